@@ -1,0 +1,76 @@
+"""Shared UFL objects for every breastsim energy term.
+
+The element degree is chosen by the BREASTSIM_DEGREE environment variable
+(set by CMake for each compiled variant). Meshes are isoparametric: the
+coordinate element has the same degree as the displacement.
+
+Conventions (SPEC.md): reference (neutral) configuration X, displacement u,
+deformed position f(X) = X + u, F = I + grad u.
+"""
+import os
+
+from ufl import (Coefficient, Constant, FacetNormal, FunctionSpace, Identity, Measure, Mesh,
+                 SpatialCoordinate, TestFunction, TrialFunction, VectorElement,
+                 det, dot, grad, inv, ln, outer, sqrt, tetrahedron, tr,
+                 variable)
+
+DEGREE = int(os.environ.get("BREASTSIM_DEGREE", "1"))
+
+# Boundary tags (facet markers) shared with the C++ side through the
+# generated registry header.
+TAGS = {"base": 1, "skin": 2, "symmetry": 3, "suture_abd": 4, "suture_bcd": 5}
+
+# Explicit quadrature degrees (the automatic estimate explodes for the
+# membrane's inv/ln/sqrt). P1: F is cell-wise constant. P2: F is linear;
+# degree 2 is the 4-point rule used for 10-node tetrahedra.
+QDEG = {1: {"volume": 1, "volume_load": 2, "surface": 1, "surface_quad": 2},
+        2: {"volume": 2, "volume_load": 3, "surface": 2, "surface_quad": 4}}[DEGREE]
+
+cell = tetrahedron
+coord_element = VectorElement("Lagrange", cell, DEGREE)
+domain = Mesh(coord_element)
+element = VectorElement("Lagrange", cell, DEGREE)
+# The space must carry the domain: a bare Coefficient(element) would get a
+# default affine (P1) domain and the P2 kernels would not match P2 meshes.
+V = FunctionSpace(domain, element)
+
+# Unknown displacement and the arguments of residual and Jacobian.
+u = Coefficient(V)
+v = TestFunction(V)
+du = TrialFunction(V)
+
+X = SpatialCoordinate(domain)
+N = FacetNormal(domain)          # reference outward normal
+I = Identity(3)
+F = variable(I + grad(u))        # deformation gradient
+J = det(F)
+
+dx = Measure("dx", domain=domain, metadata={"quadrature_degree": QDEG["volume"]})
+dx_load = Measure("dx", domain=domain, metadata={"quadrature_degree": QDEG["volume_load"]})
+
+
+def ds(tag, kind="surface"):
+    """Exterior-facet measure on one tagged boundary part."""
+    return Measure("ds", domain=domain, subdomain_id=TAGS[tag],
+                   metadata={"quadrature_degree": QDEG[kind]})
+
+
+def outer_np(n):
+    """Tangential projector P = I - n (x) n."""
+    return I - outer(n, n)
+
+
+def param(key, unit, default, lo, hi, doc, lo_open=False, shape=()):
+    """Metadata of a runtime parameter (a UFL Constant) for the case schema.
+
+    key: the case-file key that sets it; [lo, hi] the allowed range (lo
+    excluded when lo_open); shape () for scalars, (n,) for vectors.
+    """
+    return dict(key=key, unit=unit, default=default, lo=lo, hi=hi, doc=doc,
+                lo_open=lo_open, shape=list(shape))
+
+
+def neo_hooke(Fm, Jm, mu_, lmbda_, dim):
+    """Compressible neo-Hookean density of the paper's eq. (5):
+    W = mu/2 (tr(F F^T) - dim - 2 ln J) + lambda/2 (J - 1)^2."""
+    return mu_ / 2 * (tr(Fm * Fm.T) - dim - 2 * ln(Jm)) + lmbda_ / 2 * (Jm - 1) ** 2

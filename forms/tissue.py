@@ -1,0 +1,17 @@
+"""Breast tissue: compressible neo-Hookean body (paper eq. 5).
+
+    E_tissue = int_B mu/2 (tr(F F^T) - 3 - 2 ln J) + lambda/2 (J - 1)^2 dV
+"""
+from common import Constant, domain, dx, F, J, neo_hooke, param
+
+NAME = "tissue"
+mu = Constant(domain)
+lmbda = Constant(domain)
+
+PARAMETERS = {
+    "mu": param("tissue.mu", "Pa", 1000.0, 0.0, 1e8, "tissue shear modulus", lo_open=True),
+    "lmbda": param("tissue.lambda", "Pa", 9000.0, 0.0, 1e10,
+                   "tissue first Lame parameter (volumetric stiffness)"),
+}
+
+ENERGY = neo_hooke(F, J, mu, lmbda, 3) * dx

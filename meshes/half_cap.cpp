@@ -1,0 +1,76 @@
+#include "half_cap.hpp"
+#include <cmath>
+#include <gmsh.h>
+
+namespace breastsim::meshes
+{
+double sphere_radius(double R, double H) { return (R * R + H * H) / (2 * H); }
+
+void build_half_cap_geometry(const HalfCapSpec& s, int tag_base, int tag_skin,
+                             int tag_symmetry)
+{
+  namespace occ = gmsh::model::occ;
+  const double Rs = sphere_radius(s.R, s.H);
+  const double yc = s.H - Rs; // sphere centre (0, yc, 0)
+  const double L = 4 * Rs;    // box extent beyond the sphere
+
+  // Half cap = sphere intersected with {x >= 0, y >= 0}, in two halves
+  // z >= 0 and z <= 0 glued by fragment (the apex becomes a vertex).
+  std::vector<std::pair<int, int>> halves;
+  for (double z0 : {0.0, -L})
+  {
+    const int sphere = occ::addSphere(0, yc, 0, Rs);
+    const int box = occ::addBox(0, 0, z0, L, L, L);
+    gmsh::vectorpair out;
+    std::vector<gmsh::vectorpair> map;
+    occ::intersect({{3, sphere}}, {{3, box}}, out, map);
+    halves.insert(halves.end(), out.begin(), out.end());
+  }
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  occ::fragment({halves[0]}, {halves[1]}, out, map);
+  occ::synchronize();
+
+  std::vector<int> vols, base, skin, sym;
+  gmsh::vectorpair ents;
+  gmsh::model::getEntities(ents, 3);
+  for (auto [d, t] : ents)
+    vols.push_back(t);
+  gmsh::model::getEntities(ents, 2);
+  // Classify by bounding box (OCC boxes are padded by the geometric
+  // tolerance, ~1e-7 m): planar faces y = 0, x = 0, z = 0 and the sphere.
+  const double tol = 1e-4 * s.mesh_size;
+  for (auto [d, t] : ents)
+  {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(d, t, x0, y0, z0, x1, y1, z1);
+    if (std::abs(y1) < tol)
+      base.push_back(t);
+    else if (std::abs(x1) < tol)
+      sym.push_back(t);
+    else if (std::abs(z0) < tol && std::abs(z1) < tol)
+      continue; // internal interface z = 0
+    else
+      skin.push_back(t);
+  }
+  gmsh::model::addPhysicalGroup(3, vols, 1);
+  gmsh::model::addPhysicalGroup(2, base, tag_base);
+  gmsh::model::addPhysicalGroup(2, skin, tag_skin);
+  gmsh::model::addPhysicalGroup(2, sym, tag_symmetry);
+
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * s.mesh_size);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", s.mesh_size);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay: deterministic
+  gmsh::option::setNumber("Mesh.Optimize", 1);
+  gmsh::option::setNumber("General.NumThreads", 1);
+}
+
+TaggedMesh mesh_half_cap(const HalfCapSpec& spec, int tag_base, int tag_skin,
+                         int tag_symmetry)
+{
+  GmshSession session;
+  build_half_cap_geometry(spec, tag_base, tag_skin, tag_symmetry);
+  return extract_tagged_mesh(spec.order, spec.refinements);
+}
+} // namespace breastsim::meshes

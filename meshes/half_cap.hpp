@@ -1,0 +1,30 @@
+#pragma once
+// Parametric half breast in its neutral state (SPEC.md): the part x >= 0 of a
+// spherical cap with base radius R in the plane y = 0 and apex (nipple) at
+// (0, H, 0). Built with gmsh's OpenCASCADE kernel; split at z = 0 so that the
+// apex is a mesh vertex.
+#include "tagged_mesh.hpp"
+
+namespace breastsim::meshes
+{
+struct HalfCapSpec
+{
+  double R = 0.07;          ///< base radius [m]
+  double H = 0.06;          ///< height of the cap (apex y) [m]
+  double mesh_size = 0.008; ///< target element size [m]
+  int order = 1;            ///< geometry/element order (1 or 2)
+  int refinements = 0;      ///< uniform refinements after meshing
+};
+
+/// Radius of the sphere carrying the cap: Rs = (R^2 + H^2) / (2 H).
+double sphere_radius(double R, double H);
+
+/// Build the half cap in the current gmsh model, with physical surface groups
+/// base / skin / symmetry tagged by `tag_base`, `tag_skin`, `tag_symmetry`.
+void build_half_cap_geometry(const HalfCapSpec& spec, int tag_base, int tag_skin,
+                             int tag_symmetry);
+
+/// Generate the half cap and return its tagged mesh (call on one rank).
+TaggedMesh mesh_half_cap(const HalfCapSpec& spec, int tag_base, int tag_skin,
+                         int tag_symmetry);
+} // namespace breastsim::meshes

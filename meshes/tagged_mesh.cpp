@@ -1,0 +1,74 @@
+#include "tagged_mesh.hpp"
+#include <gmsh.h>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace breastsim::meshes
+{
+GmshSession::GmshSession(bool verbose)
+{
+  gmsh::initialize(0, nullptr, false);
+  gmsh::option::setNumber("General.Terminal", verbose ? 1 : 0);
+  gmsh::option::setNumber("General.Verbosity", verbose ? 5 : 1);
+  gmsh::model::add("breastsim");
+}
+
+GmshSession::~GmshSession() { gmsh::finalize(); }
+
+TaggedMesh extract_tagged_mesh(int order, int refinements)
+{
+  gmsh::model::mesh::generate(3);
+  for (int i = 0; i < refinements; ++i)
+    gmsh::model::mesh::refine();
+  if (order == 2)
+    gmsh::model::mesh::setOrder(2);
+
+  TaggedMesh m;
+  m.order = order;
+  const int tet_type = order == 1 ? 4 : 11;  // gmsh: 4-node / 10-node tetrahedron
+  const int tri_type = order == 1 ? 2 : 9;   // gmsh: 3-node / 6-node triangle
+
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, param;
+  gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, false, false);
+  std::unordered_map<std::size_t, std::int64_t> index;
+  index.reserve(node_tags.size());
+
+  // Keep only nodes used by tetrahedra, numbered in order of appearance.
+  std::vector<std::size_t> etags, enodes;
+  gmsh::model::mesh::getElementsByType(tet_type, etags, enodes);
+  if (etags.empty())
+    throw std::runtime_error("gmsh produced no tetrahedra");
+  std::unordered_map<std::size_t, std::size_t> pos;
+  for (std::size_t i = 0; i < node_tags.size(); ++i)
+    pos[node_tags[i]] = i;
+  m.cells.reserve(enodes.size());
+  for (std::size_t t : enodes)
+  {
+    auto [it, inserted] = index.try_emplace(t, static_cast<std::int64_t>(index.size()));
+    if (inserted)
+    {
+      const std::size_t p = pos.at(t);
+      m.x.insert(m.x.end(), coords.begin() + 3 * p, coords.begin() + 3 * p + 3);
+    }
+    m.cells.push_back(it->second);
+  }
+
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, 2);
+  for (auto [dim, tag] : groups)
+  {
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+    for (int e : entities)
+    {
+      std::vector<std::size_t> ftags, fnodes;
+      gmsh::model::mesh::getElementsByType(tri_type, ftags, fnodes, e);
+      for (std::size_t t : fnodes)
+        m.facets.push_back(index.at(t));
+      m.facet_tags.insert(m.facet_tags.end(), ftags.size(), tag);
+    }
+  }
+  return m;
+}
+} // namespace breastsim::meshes

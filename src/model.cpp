@@ -1,0 +1,267 @@
+#include "model.hpp"
+#include "breastsim_registry.hpp"
+#include "errors.hpp"
+#include <algorithm>
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/petsc.h>
+#include <dolfinx/mesh/utils.h>
+#include <dolfinx/common/IndexMap.h>
+#include <numeric>
+#include <fmt/format.h>
+#include <limits>
+
+namespace breastsim
+{
+using namespace dolfinx;
+
+namespace
+{
+int tag_value(const std::string& name)
+{
+  for (const auto& t : generated::tags())
+    if (t.name == name)
+      return t.value;
+  throw std::logic_error("unknown boundary tag " + name);
+}
+
+std::vector<std::int32_t> tagged_facets(const mesh::MeshTags<std::int32_t>& tags, int value)
+{
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < tags.values().size(); ++i)
+    if (tags.values()[i] == value)
+      out.push_back(tags.indices()[i]);
+  return out;
+}
+
+/// Row-major 2D view used by Expression::eval.
+struct Table
+{
+  std::vector<double> data;
+  std::size_t cols;
+  double& operator()(std::size_t i, std::size_t j) { return data[i * cols + j]; }
+};
+} // namespace
+
+Model::Model(TaggedDolfinxMesh mesh, Constraints constraints)
+    : _mesh(std::move(mesh)), _constraints(constraints)
+{
+  auto factory = generated::function_space(_mesh.degree);
+  if (!factory)
+    throw InputError(fmt::format("element order {} is not compiled in (available: 1, 2)",
+                                 _mesh.degree));
+  _V = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(factory, "u", _mesh.mesh));
+  _u = std::make_shared<fem::Function<T>>(_V);
+  _u->name = "displacement";
+
+  for (const auto& p : generated::parameters())
+    _constants[p.name] = std::make_shared<fem::Constant<T>>(std::span<const T>(p.default_value));
+  for (const auto& t : generated::terms())
+    _constants["on_" + t.name] = std::make_shared<fem::Constant<T>>(t.default_on ? 1.0 : 0.0);
+
+  // Constraints: sliding symmetry (u_x = 0 on x = 0) and the optional fixed base.
+  const int tdim = _mesh.mesh->topology().dim();
+  if (_constraints.symmetry)
+  {
+    auto V0 = _V->sub({0});
+    auto facets = tagged_facets(*_mesh.facets, tag_value("symmetry"));
+    auto dofs = fem::locate_dofs_topological(*V0, tdim - 1, facets);
+    _bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0));
+  }
+  if (_constraints.fixed_base)
+  {
+    auto facets = tagged_facets(*_mesh.facets, tag_value("base"));
+    auto dofs = fem::locate_dofs_topological(*_V, tdim - 1, facets);
+    _bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(
+        std::vector<T>{0, 0, 0}, std::move(dofs), _V));
+  }
+
+  _volume = create("volume", 0);
+  forms("");
+}
+
+std::shared_ptr<fem::Form<T>> Model::create(const std::string& name, int rank)
+{
+  ufcx_form* f = generated::form(name, _mesh.degree);
+  if (!f)
+    throw std::logic_error("no compiled form " + name);
+  std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants(_constants.begin(),
+                                                                            _constants.end());
+  std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, _V);
+  return std::make_shared<fem::Form<T>>(fem::create_form<T>(
+      *f, spaces, {{"u", _u}}, constants,
+      {{fem::IntegralType::exterior_facet, _mesh.facets.get()}}, _mesh.mesh));
+}
+
+Model::FormSet& Model::forms(const std::string& term)
+{
+  auto it = _forms.find(term);
+  if (it != _forms.end())
+    return it->second;
+  if (!term.empty() && !_constants.count("on_" + term))
+    throw InputError("unknown energy term '" + term + "'");
+  const std::string suffix = term.empty() ? "" : "_" + term;
+  FormSet s{create("energy" + suffix, 0), create("residual" + suffix, 1),
+            create("jacobian" + suffix, 2)};
+  return _forms.emplace(term, s).first->second;
+}
+
+void Model::set_parameter(const std::string& name, const std::vector<double>& value)
+{
+  auto it = _constants.find(name);
+  if (it == _constants.end() || name.rfind("on_", 0) == 0)
+    throw InputError("unknown model parameter '" + name + "'");
+  if (it->second->value.size() != value.size())
+    throw InputError(fmt::format("parameter '{}' takes {} value(s), got {}", name,
+                                 it->second->value.size(), value.size()));
+  it->second->value.assign(value.begin(), value.end());
+}
+
+std::vector<double> Model::parameter(const std::string& name) const
+{
+  auto it = _constants.find(name);
+  if (it == _constants.end())
+    throw InputError("unknown model parameter '" + name + "'");
+  return {it->second->value.begin(), it->second->value.end()};
+}
+
+std::vector<std::string> Model::parameter_names() const
+{
+  std::vector<std::string> names;
+  for (const auto& p : generated::parameters())
+    names.push_back(p.name);
+  return names;
+}
+
+void Model::set_term(const std::string& term, bool on)
+{
+  auto it = _constants.find("on_" + term);
+  if (it == _constants.end())
+    throw InputError("unknown energy term '" + term + "'");
+  it->second->value = {on ? 1.0 : 0.0};
+}
+
+bool Model::term_on(const std::string& term) const
+{
+  auto it = _constants.find("on_" + term);
+  if (it == _constants.end())
+    throw InputError("unknown energy term '" + term + "'");
+  return it->second->value[0] != 0.0;
+}
+
+std::vector<std::string> Model::term_names() const
+{
+  std::vector<std::string> names;
+  for (const auto& t : generated::terms())
+    names.push_back(t.name);
+  return names;
+}
+
+std::int64_t Model::num_dofs() const
+{
+  return _V->dofmap()->index_map->size_global() * _V->dofmap()->index_map_bs();
+}
+
+double Model::energy(const std::string& term)
+{
+  double local = fem::assemble_scalar(*forms(term).energy), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
+  return global;
+}
+
+double Model::volume()
+{
+  double local = fem::assemble_scalar(*_volume), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
+  return global;
+}
+
+double Model::area(const std::string& tag)
+{
+  auto form = create("area_" + tag, 0);
+  double local = fem::assemble_scalar(*form), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
+  return global;
+}
+
+double Model::min_detF()
+{
+  auto expr = fem::create_expression<T>(*generated::detF_expression(_mesh.degree),
+                                        {{"u", _u}}, {}, _mesh.mesh);
+  const std::int32_t ncells = _mesh.mesh->topology().index_map(3)->size_local();
+  std::vector<std::int32_t> cells(ncells);
+  std::iota(cells.begin(), cells.end(), 0);
+  const std::size_t npts = expr.X().second[0];
+  Table values{std::vector<double>(ncells * npts), npts};
+  expr.eval(std::span<const std::int32_t>(cells), values);
+  double local = values.data.empty() ? std::numeric_limits<double>::infinity()
+                                     : *std::min_element(values.data.begin(), values.data.end());
+  if (std::isnan(local))
+    local = -std::numeric_limits<double>::infinity();
+  double global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, _mesh.mesh->comm());
+  return global;
+}
+
+void Model::set_displacement(Vec x)
+{
+  Vec ux = la::petsc::create_vector_wrap(*_u->x());
+  if (x != ux)
+    VecCopy(x, ux);
+  VecDestroy(&ux);
+  _u->x()->scatter_fwd();
+}
+
+void Model::assemble_residual(Vec b, const std::string& term)
+{
+  FormSet& f = forms(term);
+  Vec b_local;
+  VecGhostGetLocalForm(b, &b_local);
+  VecSet(b_local, 0.0);
+  VecGhostRestoreLocalForm(b, &b_local);
+  fem::petsc::assemble_vector(b, *f.residual);
+  VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
+  VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
+  // Constrained rows: b = u - g (zero while u satisfies the constraint).
+  Vec ux = la::petsc::create_vector_wrap(*_u->x());
+  fem::petsc::set_bc(b, _bcs, ux, -1.0);
+  VecDestroy(&ux);
+}
+
+double Model::residual_norm(const std::string& term)
+{
+  Vec b = create_vector();
+  assemble_residual(b, term);
+  PetscReal n;
+  VecNorm(b, NORM_2, &n);
+  VecDestroy(&b);
+  return n;
+}
+
+void Model::assemble_jacobian(Mat A, const std::string& term)
+{
+  FormSet& f = forms(term);
+  MatZeroEntries(A);
+  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, _bcs);
+  MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *_V, _bcs);
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+}
+
+Mat Model::create_matrix()
+{
+  Mat A = fem::petsc::create_matrix(*forms("").jacobian, "aij");
+  //MatSetBlockSize(A, 3);
+  return A;
+}
+
+Vec Model::create_vector() const
+{
+  return la::petsc::create_vector(*_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
+}
+} // namespace breastsim

@@ -1,0 +1,167 @@
+#include "newton.hpp"
+#include "log.hpp"
+#include <cmath>
+#include <dolfinx/la/petsc.h>
+#include <fmt/format.h>
+
+namespace breastsim
+{
+NewtonSolver::NewtonSolver(Model& model, NewtonOptions options)
+    : _model(model), _opt(std::move(options))
+{
+  _A = _model.create_matrix();
+  _r = _model.create_vector();
+  _du = _model.create_vector();
+  _u0 = _model.create_vector();
+  _linear = _opt.linear;
+  if (_linear == "auto")
+    _linear = _model.num_dofs() <= _opt.direct_max_dofs ? "direct" : "amg";
+  setup_ksp();
+}
+
+NewtonSolver::~NewtonSolver()
+{
+  KSPDestroy(&_ksp);
+  MatDestroy(&_A);
+  VecDestroy(&_r);
+  VecDestroy(&_du);
+  VecDestroy(&_u0);
+}
+
+void NewtonSolver::setup_ksp()
+{
+  KSPCreate(_model.mesh().mesh->comm(), &_ksp);
+  KSPSetOperators(_ksp, _A, _A);
+  PC pc;
+  KSPGetPC(_ksp, &pc);
+  if (_linear == "direct")
+  {
+    KSPSetType(_ksp, KSPPREONLY);
+    PCSetType(pc, PCLU);
+    PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
+  }
+  else
+  {
+    // CG + smoothed-aggregation AMG; the rigid-body modes of the displacement
+    // dofs are the near-nullspace, the interpolation is reused across Newton
+    // iterations (the sparsity never changes).
+    KSPSetType(_ksp, KSPCG);
+    KSPSetTolerances(_ksp, 1e-8, 1e-50, 1e8, 1000);
+    PCSetType(pc, PCGAMG);
+    PCGAMGSetReuseInterpolation(pc, PETSC_TRUE);
+    auto V = _model.space();
+    const std::vector<double> X = V->tabulate_dof_coordinates(false);
+    const std::int32_t n = V->dofmap()->index_map->size_local();
+    Vec coords;
+    VecCreateMPI(_model.mesh().mesh->comm(), 3 * n, PETSC_DETERMINE, &coords);
+    VecSetBlockSize(coords, 3);
+    PetscScalar* c;
+    VecGetArray(coords, &c);
+    std::copy_n(X.begin(), 3 * n, c);
+    VecRestoreArray(coords, &c);
+    MatNullSpace ns;
+    MatNullSpaceCreateRigidBody(coords, &ns);
+    MatSetNearNullSpace(_A, ns);
+    MatNullSpaceDestroy(&ns);
+    VecDestroy(&coords);
+  }
+  KSPSetFromOptions(_ksp); // --petsc-options override the defaults above
+}
+
+double NewtonSolver::residual_norm()
+{
+  _model.assemble_residual(_r);
+  PetscReal n;
+  VecNorm(_r, NORM_2, &n);
+  return n;
+}
+
+NewtonReport NewtonSolver::solve(double reference_norm)
+{
+  NewtonReport rep;
+  Vec u = dolfinx::la::petsc::create_vector_wrap(*_model.displacement()->x());
+  const double tol = std::max(_opt.atol, _opt.rtol * reference_norm);
+  double rnorm = residual_norm();
+  double energy = _model.energy();
+  for (rep.iterations = 0; rep.iterations < _opt.max_iterations; ++rep.iterations)
+  {
+    rep.residual_norm = rnorm;
+    if (!std::isfinite(rnorm) || !std::isfinite(energy))
+    {
+      rep.message = "non-finite residual or energy";
+      break;
+    }
+    if (rnorm <= tol)
+    {
+      rep.converged = true;
+      break;
+    }
+    // Newton direction: J du = -r.
+    _model.assemble_jacobian(_A);
+    KSPSetOperators(_ksp, _A, _A);
+    VecScale(_r, -1.0);
+    KSPSolve(_ksp, _r, _du);
+    KSPConvergedReason kreason;
+    KSPGetConvergedReason(_ksp, &kreason);
+    PetscInt kits;
+    KSPGetIterationNumber(_ksp, &kits);
+    rep.linear_iterations += kits;
+    if (kreason < 0)
+    {
+      rep.message = fmt::format("linear solver failed ({})", KSPConvergedReasons[kreason]);
+      break;
+    }
+    {
+      Vec t; VecDuplicate(_r, &t); MatMult(_A, _du, t); VecAXPY(t, -1.0, _r); PetscReal n1, n2, n3; VecNorm(t, NORM_2, &n1); VecNorm(_r, NORM_2, &n2); VecNorm(_du, NORM_2, &n3);
+      log::debug("   linear check |J du - (-r)| = {:.3e}, |r| = {:.3e} |du| = {:.3e}", n1, n2, n3); VecDestroy(&t);
+    }
+    PetscScalar slope; // dPi/dalpha at alpha = 0: r . du (r is negated)
+    VecDot(_r, _du, &slope);
+    slope = -slope;
+
+    // Backtracking: accept the first step with det F > 0 everywhere and
+    // either an Armijo energy decrease, or (energy change at round-off level)
+    // a smaller residual.
+    VecCopy(u, _u0);
+    double alpha = 1.0;
+    bool accepted = false;
+    for (int k = 0; k <= _opt.max_backtracks && !accepted; ++k, alpha *= 0.5)
+    {
+      VecWAXPY(u, alpha, _du, _u0);
+      _model.set_displacement(u);
+      const double jmin = _model.min_detF();
+      const double e = _model.energy();
+      log::debug("    backtrack alpha={:.3g} min detF={:.4g} E={:.10e} E0={:.10e} slope={:.3e}", alpha, jmin, e, energy, slope);
+      if (!(jmin > 0))
+        continue;
+      if (!std::isfinite(e))
+        continue;
+      const double tiny = 1e-12 * std::max(std::abs(energy), std::abs(e));
+      if (e <= energy + 1e-4 * alpha * std::min(slope, 0.0))
+        accepted = true;
+      else if (std::abs(e - energy) <= tiny)
+      {
+        const double rn = residual_norm();
+        accepted = rn < rnorm;
+      }
+      if (accepted)
+        energy = e;
+    }
+    if (!accepted)
+    {
+      VecCopy(_u0, u);
+      _model.set_displacement(u);
+      rep.message = "line search failed (no admissible decrease; det F <= 0 or energy increase)";
+      break;
+    }
+    rnorm = residual_norm();
+    log::debug("  newton {:2d}: |r| = {:.3e}, energy = {:.9e}, step = {:.3g}, ksp its = {}",
+               rep.iterations + 1, rnorm, energy, 2 * alpha, kits);
+  }
+  if (!rep.converged && rep.message.empty())
+    rep.message = fmt::format("no convergence in {} iterations (|r| = {:.3e} > {:.3e})",
+                              _opt.max_iterations, rnorm, tol);
+  VecDestroy(&u);
+  return rep;
+}
+} // namespace breastsim

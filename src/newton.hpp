@@ -1,0 +1,57 @@
+#pragma once
+// Newton's method for the total energy of a Model: PETSc KSP for the linear
+// systems (MUMPS LU or CG + GAMG with the rigid-body near-nullspace, any
+// PETSc option overrides), and a backtracking line search that never accepts
+// an inverted element (det F <= 0) nor an energy increase.
+#include "model.hpp"
+#include <petscksp.h>
+#include <string>
+
+namespace breastsim
+{
+struct NewtonOptions
+{
+  std::string linear = "auto";          ///< "direct", "amg" or "auto"
+  std::int64_t direct_max_dofs = 200000; ///< "auto": direct up to this size
+  double rtol = 1e-9;                   ///< residual tolerance relative to the reference norm
+  double atol = 1e-11;                  ///< absolute residual tolerance [N]
+  int max_iterations = 25;
+  int max_backtracks = 12;              ///< line search halvings
+};
+
+struct NewtonReport
+{
+  bool converged = false;
+  int iterations = 0;
+  int linear_iterations = 0;
+  double residual_norm = 0;
+  std::string message;
+};
+
+class NewtonSolver
+{
+public:
+  NewtonSolver(Model& model, NewtonOptions options);
+  ~NewtonSolver();
+  NewtonSolver(const NewtonSolver&) = delete;
+  NewtonSolver& operator=(const NewtonSolver&) = delete;
+
+  /// Solve from the model's current displacement. Converged when
+  /// |r| <= max(atol, rtol * reference_norm). On failure the displacement is
+  /// left at the last accepted iterate.
+  NewtonReport solve(double reference_norm);
+  /// Euclidean norm of the current residual.
+  double residual_norm();
+  /// "direct" or "amg": what the linear solver resolved to.
+  const std::string& linear_solver() const { return _linear; }
+
+private:
+  void setup_ksp();
+  Model& _model;
+  NewtonOptions _opt;
+  std::string _linear;
+  Mat _A = nullptr;
+  Vec _r = nullptr, _du = nullptr, _u0 = nullptr;
+  KSP _ksp = nullptr;
+};
+} // namespace breastsim

@@ -1,0 +1,125 @@
+#include "observables.hpp"
+#include "breastsim_registry.hpp"
+#include "errors.hpp"
+#include <algorithm>
+#include <cmath>
+#include <dolfinx/fem/DirichletBC.h>
+#include <limits>
+
+namespace breastsim
+{
+namespace
+{
+std::vector<std::int32_t> nodes_on(const Model& m, const std::string& tag)
+{
+  int value = -1;
+  for (const auto& t : generated::tags())
+    if (t.name == tag)
+      value = t.value;
+  const auto& tags = *m.mesh().facets;
+  std::vector<std::int32_t> facets;
+  for (std::size_t i = 0; i < tags.values().size(); ++i)
+    if (tags.values()[i] == value)
+      facets.push_back(tags.indices()[i]);
+  auto nodes = dolfinx::fem::locate_dofs_topological(*m.space(), 2, facets);
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+} // namespace
+
+nlohmann::json to_json(const Observables& o)
+{
+  return {{"nipple_m", o.nipple},          {"projection_m", o.projection},
+          {"z_min_m", o.z_min},            {"z_max_m", o.z_max},
+          {"base_perimeter_m", o.base_perimeter}, {"volume_m3", o.volume},
+          {"energy_J", o.energy}};
+}
+
+ObservableProbe::ObservableProbe(const Model& m, std::array<double, 3> p)
+{
+  _X = m.space()->tabulate_dof_coordinates(false);
+  _skin = nodes_on(m, "skin");
+  const auto base = nodes_on(m, "base");
+  std::set_intersection(_skin.begin(), _skin.end(), base.begin(), base.end(), std::back_inserter(_rim));
+
+  // Nipple: the skin node nearest to the reference point, over all ranks.
+  struct
+  {
+    double d;
+    int rank;
+  } local{std::numeric_limits<double>::max(), 0}, global;
+  MPI_Comm comm = m.mesh().mesh->comm();
+  MPI_Comm_rank(comm, &local.rank);
+  for (auto n : _skin)
+  {
+    const double d = std::hypot(_X[3 * n] - p[0], _X[3 * n + 1] - p[1], _X[3 * n + 2] - p[2]);
+    if (d < local.d)
+    {
+      local.d = d;
+      _apex_node = n;
+    }
+  }
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm);
+  _apex_rank = global.rank;
+  if (global.d > 1e-6)
+    throw InputError("the nipple point is not a node of the skin mesh");
+}
+
+Observables ObservableProbe::measure(Model& m) const
+{
+  MPI_Comm comm = m.mesh().mesh->comm();
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  auto u = m.displacement()->x()->array();
+  auto pos = [&](std::int32_t n, int i) { return _X[3 * n + i] + u[3 * n + i]; };
+
+  Observables o;
+  double ext[3] = {-std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                   -std::numeric_limits<double>::max()};
+  for (auto n : _skin)
+  {
+    ext[0] = std::max(ext[0], pos(n, 1));
+    ext[1] = std::min(ext[1], pos(n, 2));
+    ext[2] = std::max(ext[2], pos(n, 2));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &ext[0], 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &ext[1], 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &ext[2], 1, MPI_DOUBLE, MPI_MAX, comm);
+  o.projection = ext[0];
+  o.z_min = ext[1];
+  o.z_max = ext[2];
+
+  if (rank == _apex_rank)
+    for (int i = 0; i < 3; ++i)
+      o.nipple[i] = pos(_apex_node, i);
+  MPI_Bcast(o.nipple.data(), 3, MPI_DOUBLE, _apex_rank, comm);
+
+  // Base rim: gather (reference angle, deformed position) from all ranks,
+  // order by the angle about the y axis, drop duplicates (ghosts).
+  std::vector<double> local;
+  for (auto n : _rim)
+    local.insert(local.end(), {std::atan2(_X[3 * n + 2], _X[3 * n]), pos(n, 0), pos(n, 1), pos(n, 2)});
+  int nloc = local.size(), size;
+  MPI_Comm_size(comm, &size);
+  std::vector<int> counts(size), displs(size, 0);
+  MPI_Allgather(&nloc, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int i = 1; i < size; ++i)
+    displs[i] = displs[i - 1] + counts[i - 1];
+  std::vector<double> all(displs.back() + counts.back());
+  MPI_Allgatherv(local.data(), nloc, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, comm);
+  std::vector<std::array<double, 4>> rim(all.size() / 4);
+  for (std::size_t i = 0; i < rim.size(); ++i)
+    rim[i] = {all[4 * i], all[4 * i + 1], all[4 * i + 2], all[4 * i + 3]};
+  std::sort(rim.begin(), rim.end());
+  rim.erase(std::unique(rim.begin(), rim.end(), [](auto& a, auto& b) { return std::abs(a[0] - b[0]) < 1e-12; }),
+            rim.end());
+  double arc = 0;
+  for (std::size_t i = 1; i < rim.size(); ++i)
+    arc += std::hypot(rim[i][1] - rim[i - 1][1], rim[i][2] - rim[i - 1][2], rim[i][3] - rim[i - 1][3]);
+  o.base_perimeter = 2 * arc;
+  o.volume = 2 * m.volume();
+  o.energy = 2 * m.energy();
+  return o;
+}
+} // namespace breastsim

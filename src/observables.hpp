@@ -1,0 +1,40 @@
+#pragma once
+// Observables of a deformed breast (SPEC.md), computed on the skin nodes:
+// nipple position, projection (max y), z_min, z_max, base perimeter (full
+// breast), volume (full breast) and total energy (full breast).
+#include "model.hpp"
+#include <array>
+#include <nlohmann/json.hpp>
+
+namespace breastsim
+{
+struct Observables
+{
+  std::array<double, 3> nipple{};  ///< deformed position of the apex material point [m]
+  double projection = 0;           ///< max y over the skin [m]
+  double z_min = 0, z_max = 0;     ///< extreme z over the skin [m]
+  double base_perimeter = 0;       ///< deformed base boundary, full breast [m]
+  double volume = 0;               ///< deformed volume, full breast [m^3]
+  double energy = 0;               ///< total potential energy, full breast [J]
+};
+
+nlohmann::json to_json(const Observables& o);
+
+class ObservableProbe
+{
+public:
+  /// `nipple_reference`: reference position of the nipple material point.
+  ObservableProbe(const Model& model, std::array<double, 3> nipple_reference);
+  /// Measure the model's current state (collective).
+  Observables measure(Model& model) const;
+  /// Reference node coordinates (local nodes, row-major) of the skin.
+  const std::vector<std::int32_t>& skin_nodes() const { return _skin; }
+
+private:
+  std::vector<double> _X;            // reference coordinates of all local nodes
+  std::vector<std::int32_t> _skin;   // skin nodes
+  std::vector<std::int32_t> _rim;    // nodes on base and skin
+  int _apex_rank = 0;
+  std::int32_t _apex_node = -1;      // on _apex_rank
+};
+} // namespace breastsim

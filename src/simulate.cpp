@@ -1,0 +1,195 @@
+#include "simulate.hpp"
+#include "../meshes/half_cap.hpp"
+#include "breastsim_registry.hpp"
+#include "log.hpp"
+#include "output.hpp"
+#include <chrono>
+#include <fmt/format.h>
+
+namespace breastsim
+{
+namespace
+{
+using clock_type = std::chrono::steady_clock;
+double since(clock_type::time_point t0)
+{
+  return std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+
+int tag(const std::string& name)
+{
+  for (const auto& t : generated::tags())
+    if (t.name == name)
+      return t.value;
+  throw std::logic_error("unknown tag " + name);
+}
+} // namespace
+
+TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm)
+{
+  meshes::HalfCapSpec spec;
+  spec.R = c.number("geometry.R");
+  spec.H = c.number("geometry.H");
+  spec.mesh_size = c.number("geometry.mesh_size");
+  spec.order = static_cast<int>(c.integer("geometry.order"));
+  spec.refinements = static_cast<int>(c.integer("geometry.refinements"));
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh m;
+  m.order = spec.order;
+  if (rank == 0)
+    m = meshes::mesh_half_cap(spec, tag("base"), tag("skin"), tag("symmetry"));
+  return to_dolfinx(comm, m, spec.order);
+}
+
+void apply_parameters(const Config& c, Model& model)
+{
+  for (const auto& k : schema())
+  {
+    if (k.ufl_name.empty())
+      continue;
+    if (k.type == KeyType::number)
+      model.set_parameter(k.ufl_name, {c.number(k.key)});
+    else
+      model.set_parameter(k.ufl_name, c.numbers(k.key));
+  }
+  for (const auto& t : model.term_names())
+    model.set_term(t, c.flag("terms." + t));
+}
+
+NewtonOptions newton_options(const Config& c)
+{
+  NewtonOptions o;
+  o.linear = c.text("solver.linear");
+  o.direct_max_dofs = c.integer("solver.direct_max_dofs");
+  o.rtol = c.number("solver.rtol");
+  o.atol = c.number("solver.atol");
+  o.max_iterations = static_cast<int>(c.integer("solver.max_iterations"));
+  return o;
+}
+
+LoadStepOptions load_step_options(const Config& c)
+{
+  LoadStepOptions o;
+  o.initial_step = c.number("solver.initial_load_step");
+  o.min_step = c.number("solver.min_load_step");
+  return o;
+}
+
+std::vector<Posture> requested_postures(const Config& c)
+{
+  std::vector<Posture> p;
+  for (const auto& n : c.strings("postures.names"))
+    p.push_back(named_posture(n));
+  for (double t : c.numbers("postures.theta_deg"))
+    p.push_back(posture_from_angle(t));
+  return p;
+}
+
+PostureResult solve_posture(Model& model, NewtonSolver& newton, const ObservableProbe& probe,
+                            const Posture& posture, const Config& c)
+{
+  const auto t0 = clock_type::now();
+  PostureResult r;
+  r.posture = posture;
+  const auto g = gravity_vector(posture.theta_deg, c.number("gravity.g"));
+  model.set_parameter("g_vec", {g[0], g[1], g[2]});
+  // Each posture starts from the neutral state.
+  model.displacement()->x()->set(0.0);
+  // Force scale for the Newton tolerance: the full gravity load.
+  model.set_parameter("load", {1.0});
+  const double f_ext = model.residual_norm("gravity");
+  model.set_parameter("load", {0.0});
+  r.path = continuation(model, newton, "load", 0.0, 1.0, load_step_options(c),
+                        fmt::format("posture '{}' (theta = {:g} deg)", posture.name, posture.theta_deg),
+                        f_ext);
+  r.observables = probe.measure(model);
+  r.seconds = since(t0);
+  return r;
+}
+
+nlohmann::json to_json(const PostureResult& r)
+{
+  auto j = to_json(r.observables);
+  j["posture"] = r.posture.name;
+  j["theta_deg"] = r.posture.theta_deg;
+  j["load_steps"] = r.path.steps;
+  j["failed_load_steps"] = r.path.failed_steps;
+  j["newton_iterations"] = r.path.newton_iterations;
+  j["linear_iterations"] = r.path.linear_iterations;
+  j["wall_time_s"] = r.seconds;
+  return j;
+}
+
+std::string observables_table(const std::vector<PostureResult>& rs)
+{
+  std::string s = fmt::format("{:<12} {:>7} {:>24} {:>9} {:>8} {:>8} {:>9} {:>9} {:>7} {:>7}\n",
+                              "posture", "theta", "nipple x,y,z [mm]", "proj[mm]", "zmin[mm]",
+                              "zmax[mm]", "perim[mm]", "vol[cm3]", "newton", "time[s]");
+  for (const auto& r : rs)
+  {
+    const auto& o = r.observables;
+    s += fmt::format("{:<12} {:>7.1f} {:>7.2f},{:>7.2f},{:>7.2f} {:>9.2f} {:>8.2f} {:>8.2f} {:>9.2f} "
+                     "{:>9.2f} {:>7d} {:>7.2f}\n",
+                     r.posture.name, r.posture.theta_deg, 1e3 * o.nipple[0], 1e3 * o.nipple[1],
+                     1e3 * o.nipple[2], 1e3 * o.projection, 1e3 * o.z_min, 1e3 * o.z_max,
+                     1e3 * o.base_perimeter, 1e6 * o.volume, r.path.newton_iterations, r.seconds);
+  }
+  return s;
+}
+
+SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI_Comm comm)
+{
+  SimulationResult res;
+  auto t0 = clock_type::now();
+  auto mesh = build_neutral_mesh(c, comm);
+  res.mesh_seconds = since(t0);
+  res.quality = mesh_quality(*mesh.mesh);
+  log::info("mesh: {} tetrahedra (P{}), min/max dihedral {:.1f}/{:.1f} deg, min radius ratio "
+            "{:.3f}, {:.2f} s",
+            res.quality.num_cells, mesh.degree, res.quality.min_dihedral_deg,
+            res.quality.max_dihedral_deg, res.quality.min_radius_ratio, res.mesh_seconds);
+
+  Model model(mesh, Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, model);
+  res.dofs = model.num_dofs();
+  NewtonSolver newton(model, newton_options(c));
+  res.linear_solver = newton.linear_solver();
+  ObservableProbe probe(model, {0.0, c.number("geometry.H"), 0.0});
+  log::info("model: {} unknowns, linear solver {}, terms on: {}", res.dofs, res.linear_solver,
+            [&] {
+              std::string s;
+              for (const auto& t : model.term_names())
+                if (model.term_on(t))
+                  s += (s.empty() ? "" : ", ") + t;
+              return s;
+            }());
+
+  OutputDir dir(out, comm);
+  for (const auto& p : requested_postures(c))
+  {
+    log::info("solving posture '{}' (theta = {:g} deg)", p.name, p.theta_deg);
+    res.postures.push_back(solve_posture(model, newton, probe, p, c));
+    write_fields(model, dir.path() / ("displacement_" + p.name), c.flag("output.xdmf"),
+                 c.flag("output.vtk"));
+  }
+
+  nlohmann::json j;
+  j["case"] = c.text("case.name");
+  j["mesh"] = to_json(res.quality);
+  j["mesh"]["order"] = mesh.degree;
+  j["mesh"]["wall_time_s"] = res.mesh_seconds;
+  j["unknowns"] = res.dofs;
+  j["linear_solver"] = res.linear_solver;
+  int size;
+  MPI_Comm_size(comm, &size);
+  j["mpi_ranks"] = size;
+  j["postures"] = nlohmann::json::array();
+  for (const auto& r : res.postures)
+    j["postures"].push_back(to_json(r));
+  write_json(dir.path() / "summary.json", j, comm);
+  write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
+  dir.commit();
+  return res;
+}
+} // namespace breastsim

@@ -1,0 +1,51 @@
+#pragma once
+// The forward simulation: mesh the neutral half breast, bind the case's
+// parameters, and solve each posture from the neutral state.
+#include "config.hpp"
+#include "load_stepping.hpp"
+#include "mesh_quality.hpp"
+#include "observables.hpp"
+#include "posture.hpp"
+#include <filesystem>
+#include <memory>
+
+namespace breastsim
+{
+struct PostureResult
+{
+  Posture posture;
+  Observables observables;
+  LoadPathReport path;
+  double seconds = 0;
+};
+
+struct SimulationResult
+{
+  MeshQuality quality;
+  std::int64_t dofs = 0;
+  std::string linear_solver;
+  double mesh_seconds = 0;
+  std::vector<PostureResult> postures;
+};
+
+/// Mesh the neutral half cap of the case (collective; gmsh runs on rank 0).
+TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm);
+/// Bind every physics key of the case and the term switches into the model.
+void apply_parameters(const Config& c, Model& model);
+NewtonOptions newton_options(const Config& c);
+LoadStepOptions load_step_options(const Config& c);
+/// The postures requested by the case (names first, then angles).
+std::vector<Posture> requested_postures(const Config& c);
+
+/// Solve one posture from the neutral state (u = 0): the gravity load is
+/// ramped from 0 to 1 with cut-back. Throws SolveError naming the posture.
+PostureResult solve_posture(Model& model, NewtonSolver& newton, const ObservableProbe& probe,
+                            const Posture& posture, const Config& c);
+
+/// The whole `simulate` job. Writes into `out` (replaced only on success).
+SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI_Comm comm);
+
+/// Short printable table of the observables of each posture.
+std::string observables_table(const std::vector<PostureResult>& r);
+nlohmann::json to_json(const PostureResult& r);
+} // namespace breastsim

@@ -1,0 +1,51 @@
+#pragma once
+// Shared helpers for the tests: small meshes and models of the default case.
+#include "config.hpp"
+#include "model.hpp"
+#include "simulate.hpp"
+#include <dolfinx/la/petsc.h>
+#include <random>
+
+namespace breastsim::fixtures
+{
+/// A coarse default case (fast), optionally of element order 2.
+inline Config coarse_case(int order = 1, double h = 0.014)
+{
+  Config c;
+  c.set("geometry.mesh_size", h);
+  c.set("geometry.order", std::int64_t(order));
+  c.validate();
+  return c;
+}
+
+/// Model of a case with its parameters bound.
+inline std::unique_ptr<Model> make_model(const Config& c)
+{
+  auto m = std::make_unique<Model>(build_neutral_mesh(c, MPI_COMM_WORLD),
+                                   Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, *m);
+  return m;
+}
+
+/// Fill u with a smooth random-ish field of amplitude `amp` (constrained dofs zeroed).
+inline void perturb(Model& m, double amp, unsigned seed)
+{
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> d(-1, 1);
+  const double a[9] = {d(gen), d(gen), d(gen), d(gen), d(gen), d(gen), d(gen), d(gen), d(gen)};
+  m.displacement()->interpolate(
+      [&](auto&& x)
+      {
+        xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
+        for (std::size_t p = 0; p < x.shape(1); ++p)
+          for (int i = 0; i < 3; ++i)
+            v(i, p) = amp * (a[3 * i] * std::sin(20 * x(0, p)) + a[3 * i + 1] * std::cos(15 * x(1, p))
+                             + a[3 * i + 2] * x(2, p) * 10);
+        return v;
+      });
+  auto arr = m.displacement()->x()->mutable_array();
+  for (const auto& bc : m.bcs())
+    bc->set(arr, 1.0); // u = g (= 0) on constrained dofs
+  m.displacement()->x()->scatter_fwd();
+}
+} // namespace breastsim::fixtures
