@@ -5,25 +5,63 @@ With the reference normal N and P = I - N (x) N (SPEC.md):
     W_s = mu_s/2 (tr C_s - 2 - 2 ln J_s) + lambda_s/2 (J_s - 1)^2,
     E_skin = int_skin t_s W_s dA.
 Only the tangential part F P of the deformation gradient enters.
+
+A membrane has no bending stiffness: under in-plane compression the plain
+law above has negative geometric stiffness and wrinkles at the mesh scale
+(Newton stalls, the solution is not unique). With skin_tension_only = 1
+(default) the relaxed tension-field energy is used instead (thin skin wrinkles
+rather than carrying compression). In principal stretches l1 >= l2
+(l1^2 = (I1 + sqrt(I1^2 - 4 J_s^2)) / 2, l2 = J_s / l1):
+    taut     (l2 >= n(l1)):      W_s(l1, l2)
+    wrinkled (l1 > 1, l2 < n):   W_s(l1, n(l1))      (stress-free across the wrinkles)
+    slack    (l1 <= 1):          0
+where n(l1) is the natural width, dW_s/dl2 = 0:
+    n = (L l1 + sqrt(L^2 l1^2 + 4 mu (mu + L l1^2))) / (2 (mu + L l1^2)).
+The relaxed energy is C1 and equals W_s wherever the skin is in tension.
 """
-from common import (Constant, I, F, J, N, domain, dot, ds, inv, ln, outer_np,
+from common import (Constant, F, J, N, domain, dot, ds, inv, ln, outer_np,
                     param, sqrt, tr)
+from ufl import conditional, gt, lt, max_value, And
 
 NAME = "skin"
 mu_s = Constant(domain)
 lmbda_s = Constant(domain)
 t_s = Constant(domain)
+skin_tension_only = Constant(domain)
 
 PARAMETERS = {
     "mu_s": param("skin.mu", "Pa", 60000.0, 0.0, 1e10, "skin shear modulus"),
     "lmbda_s": param("skin.lambda", "Pa", 60000.0, 0.0, 1e10, "skin first Lame parameter (in-plane)"),
     "t_s": param("skin.thickness", "m", 0.0015, 0.0, 0.05, "skin thickness"),
+    "skin_tension_only": param("skin.tension_only", "1", 1.0, 0.0, 1.0,
+                               "1: relaxed tension-field membrane (wrinkles, no compression); "
+                               "0: plain neo-Hookean membrane"),
 }
+
+
+def membrane_density(l1, l2):
+    """W_s in principal stretches."""
+    return (mu_s / 2 * (l1 ** 2 + l2 ** 2 - 2 - 2 * ln(l1 * l2))
+            + lmbda_s / 2 * (l1 * l2 - 1) ** 2)
+
 
 P = outer_np(N)
 C_s = P * F.T * F * P
 cofN = J * inv(F).T * N
 J_s = sqrt(dot(cofN, cofN))
-W_s = mu_s / 2 * (tr(C_s) - 2 - 2 * ln(J_s)) + lmbda_s / 2 * (J_s - 1) ** 2
+I1 = tr(C_s)
+W_plain = mu_s / 2 * (I1 - 2 - 2 * ln(J_s)) + lmbda_s / 2 * (J_s - 1) ** 2
+
+# Principal stretches (guarded square root: equal stretches give a zero
+# discriminant whose derivative must stay finite in the unused branches).
+disc = max_value(I1 ** 2 - 4 * J_s ** 2, 1e-14)
+l1 = sqrt((I1 + sqrt(disc)) / 2)
+l2 = J_s / l1
+natural = (lmbda_s * l1 + sqrt(lmbda_s ** 2 * l1 ** 2 + 4 * mu_s * (mu_s + lmbda_s * l1 ** 2))) \
+    / (2 * (mu_s + lmbda_s * l1 ** 2))
+W_relaxed = conditional(gt(l1, 1.0),
+                        conditional(lt(l2, natural), membrane_density(l1, natural), W_plain),
+                        0.0)
+W_s = conditional(gt(skin_tension_only, 0.5), W_relaxed, W_plain)
 
 ENERGY = t_s * W_s * ds("skin", "surface")

@@ -27,8 +27,9 @@ inline std::unique_ptr<Model> make_model(const Config& c)
   return m;
 }
 
-/// Fill u with a smooth random-ish field of amplitude `amp` (constrained dofs zeroed).
-inline void perturb(Model& m, double amp, unsigned seed)
+/// Fill u with dilation * X plus a smooth random-ish field of amplitude `amp`
+/// (constrained dofs zeroed).
+inline void perturb(Model& m, double amp, unsigned seed, double dilation = 0)
 {
   std::mt19937 gen(seed);
   std::uniform_real_distribution<double> d(-1, 1);
@@ -39,7 +40,7 @@ inline void perturb(Model& m, double amp, unsigned seed)
         xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
         for (std::size_t p = 0; p < x.shape(1); ++p)
           for (int i = 0; i < 3; ++i)
-            v(i, p) = amp * (a[3 * i] * std::sin(20 * x(0, p)) + a[3 * i + 1] * std::cos(15 * x(1, p))
+            v(i, p) = dilation * x(i, p) + amp * (a[3 * i] * std::sin(20 * x(0, p)) + a[3 * i + 1] * std::cos(15 * x(1, p))
                              + a[3 * i + 2] * x(2, p) * 10);
         return v;
       });

@@ -11,8 +11,10 @@ namespace
 {
 struct TaylorCase
 {
-  std::string term; // "" = total energy
+  std::string term;      // "" = total energy
   int order;
+  double tension_only;   // skin law: 0 plain membrane, 1 relaxed tension field
+  double dilation = 0;   // base state u = dilation * X + smooth perturbation
 };
 
 class Taylor : public ::testing::TestWithParam<TaylorCase>
@@ -43,12 +45,13 @@ double dot_local_owned(Vec a, Vec b)
 
 TEST_P(Taylor, SecondOrderRemainders)
 {
-  const auto [term, order] = GetParam();
+  const auto [term, order, tension_only, dilation] = GetParam();
   auto c = fixtures::coarse_case(order, order == 1 ? 0.014 : 0.02);
   c.set("base.c_fold_ratio", 3.0); // exercise the spatially varying bed
+  c.set("skin.tension_only", tension_only);
   auto m = fixtures::make_model(c);
   m->set_parameter("g_vec", {0.0, -4.0, -9.0});
-  fixtures::perturb(*m, 2e-3, 1);
+  fixtures::perturb(*m, 2e-3, 1, dilation);
   const auto u = copy(*m);
   fixtures::perturb(*m, 1e-3, 2);
   const auto v = copy(*m);
@@ -102,8 +105,18 @@ TEST_P(Taylor, SecondOrderRemainders)
     EXPECT_GT(sE[k], 0.0);
     if (eE[k] > 1e-9 * sE[k])
       EXPECT_NEAR(rateE, 2.0, 0.2) << eE[k - 1] << " " << eE[k];
+    // The relaxed membrane is C1 with a piecewise-smooth residual: where
+    // quadrature points cross from taut to wrinkled within the step the
+    // residual remainder decays like t^1.5 (sqrt(#crossings) * t); its energy
+    // remainder stays O(t^2).
+    const bool kinked = tension_only > 0.5 && dilation == 0 && (term == "skin" || term.empty());
     if (eR[k] > 1e-9 * sR[k])
-      EXPECT_NEAR(rateR, 2.0, 0.2) << eR[k - 1] << " " << eR[k];
+    {
+      if (kinked)
+        EXPECT_GT(rateR, 1.3) << eR[k - 1] << " " << eR[k];
+      else
+        EXPECT_NEAR(rateR, 2.0, 0.2) << eR[k - 1] << " " << eR[k];
+    }
   }
   VecDestroy(&r0);
   VecDestroy(&r1);
@@ -114,12 +127,17 @@ TEST_P(Taylor, SecondOrderRemainders)
 
 INSTANTIATE_TEST_SUITE_P(
     AllTerms, Taylor,
-    ::testing::Values(TaylorCase{"", 1}, TaylorCase{"tissue", 1}, TaylorCase{"gravity", 1},
-                      TaylorCase{"skin", 1}, TaylorCase{"base_springs", 1}, TaylorCase{"", 2},
-                      TaylorCase{"tissue", 2}, TaylorCase{"skin", 2},
-                      TaylorCase{"base_springs", 2}),
+    ::testing::Values(TaylorCase{"", 1, 0}, TaylorCase{"", 1, 1}, TaylorCase{"tissue", 1, 1},
+                      TaylorCase{"gravity", 1, 1}, TaylorCase{"skin", 1, 0},
+                      TaylorCase{"skin", 1, 1}, TaylorCase{"skin", 1, 1, 0.1},
+                      TaylorCase{"base_springs", 1, 1}, TaylorCase{"", 2, 0},
+                      TaylorCase{"", 2, 1}, TaylorCase{"tissue", 2, 1}, TaylorCase{"skin", 2, 0},
+                      TaylorCase{"skin", 2, 1}, TaylorCase{"skin", 2, 1, 0.1},
+                      TaylorCase{"base_springs", 2, 1}),
     [](const auto& info)
     {
-      return (info.param.term.empty() ? std::string("total") : info.param.term) + "_P"
-             + std::to_string(info.param.order);
+      const auto& p = info.param;
+      return (p.term.empty() ? std::string("total") : p.term) + "_P" + std::to_string(p.order)
+             + (p.tension_only > 0.5 ? "_relaxed" : "_plain")
+             + (p.dilation > 0 ? "_taut" : "");
     });
