@@ -21,7 +21,7 @@ The relaxed energy is C1 and equals W_s wherever the skin is in tension.
 """
 from common import (Constant, F, J, N, domain, dot, ds, inv, ln, outer_np,
                     param, sqrt, tr)
-from ufl import conditional, gt, lt, max_value, And
+from ufl import conditional, gt, lt, max_value
 
 NAME = "skin"
 mu_s = Constant(domain)
@@ -52,16 +52,22 @@ J_s = sqrt(dot(cofN, cofN))
 I1 = tr(C_s)
 W_plain = mu_s / 2 * (I1 - 2 - 2 * ln(J_s)) + lmbda_s / 2 * (J_s - 1) ** 2
 
-# Principal stretches (guarded square root: equal stretches give a zero
-# discriminant whose derivative must stay finite in the unused branches).
-disc = max_value(I1 ** 2 - 4 * J_s ** 2, 1e-14)
-l1 = sqrt((I1 + sqrt(disc)) / 2)
+# Principal stretches. Where they (nearly) coincide, d = (l1^2 - l2^2)^2 < 1e-10,
+# the eigen-decomposition is singular; there the state is either taut or (for
+# equibiaxial compression) slack, and the plain law is used: exact at the
+# identity (zero stress, no round-off amplification) and taut states.
+disc = I1 ** 2 - 4 * J_s ** 2
+disc_safe = max_value(disc, 1e-10)
+l1 = sqrt((I1 + sqrt(disc_safe)) / 2)
 l2 = J_s / l1
 natural = (lmbda_s * l1 + sqrt(lmbda_s ** 2 * l1 ** 2 + 4 * mu_s * (mu_s + lmbda_s * l1 ** 2))) \
     / (2 * (mu_s + lmbda_s * l1 ** 2))
-W_relaxed = conditional(gt(l1, 1.0),
-                        conditional(lt(l2, natural), membrane_density(l1, natural), W_plain),
-                        0.0)
+W_relaxed = conditional(gt(disc, 1e-10),
+                        conditional(gt(l1, 1.0),
+                                    conditional(lt(l2, natural), membrane_density(l1, natural),
+                                                W_plain),
+                                    0.0),
+                        W_plain)
 W_s = conditional(gt(skin_tension_only, 0.5), W_relaxed, W_plain)
 
 ENERGY = t_s * W_s * ds("skin", "surface")

@@ -2,6 +2,7 @@
 // Shared helpers for the tests: small meshes and models of the default case.
 #include "config.hpp"
 #include "model.hpp"
+#include "load_stepping.hpp"
 #include "simulate.hpp"
 #include <dolfinx/la/petsc.h>
 #include <random>
@@ -48,5 +49,31 @@ inline void perturb(Model& m, double amp, unsigned seed, double dilation = 0)
   for (const auto& bc : m.bcs())
     bc->set(arr, 1.0); // u = g (= 0) on constrained dofs
   m.displacement()->x()->scatter_fwd();
+}
+} // namespace breastsim::fixtures
+
+namespace breastsim::fixtures
+{
+/// Solve the model under gravity vector g from u = 0 (default solver settings).
+inline LoadPathReport solve_gravity(Model& m, std::array<double, 3> g, NewtonOptions o = {})
+{
+  NewtonSolver newton(m, o);
+  m.set_parameter("g_vec", {g[0], g[1], g[2]});
+  m.displacement()->x()->set(0.0);
+  m.set_parameter("load", {1.0});
+  const double f = m.residual_norm("gravity");
+  m.set_parameter("load", {0.0});
+  return continuation(m, newton, "load", 0.0, 1.0, LoadStepOptions{}, "test", f);
+}
+
+/// Largest |u| component over all ranks.
+inline double max_abs_u(const Model& m)
+{
+  double local = 0;
+  for (double x : m.displacement()->x()->array())
+    local = std::max(local, std::abs(x));
+  double global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return global;
 }
 } // namespace breastsim::fixtures

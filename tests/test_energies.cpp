@@ -1,0 +1,157 @@
+// Each energy term at a homogeneous deformation equals its closed form.
+#include "../meshes/half_cap.hpp"
+#include "fixtures.hpp"
+#include <gtest/gtest.h>
+
+using namespace breastsim;
+
+namespace
+{
+/// u = (F0 - I) X
+void set_homogeneous(Model& m, const std::array<double, 9>& F0)
+{
+  m.displacement()->interpolate(
+      [&](auto&& x)
+      {
+        xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
+        for (std::size_t p = 0; p < x.shape(1); ++p)
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              v(i, p) += (F0[3 * i + j] - (i == j)) * x(j, p);
+        return v;
+      });
+}
+
+double det3(const std::array<double, 9>& F)
+{
+  return F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6])
+         + F[2] * (F[3] * F[7] - F[4] * F[6]);
+}
+
+class Energies : public ::testing::TestWithParam<int>
+{
+protected:
+  void SetUp() override
+  {
+    c = fixtures::coarse_case(GetParam(), 0.012);
+    m = fixtures::make_model(c);
+  }
+  Config c;
+  std::unique_ptr<Model> m;
+};
+} // namespace
+
+TEST_P(Energies, TissueNeoHookean)
+{
+  const std::array<double, 9> F0 = {1.1, 0.2, 0.0, -0.05, 0.9, 0.1, 0.0, 0.03, 1.05};
+  set_homogeneous(*m, F0);
+  const double mu = 1300, lmbda = 7000;
+  m->set_parameter("mu", {mu});
+  m->set_parameter("lmbda", {lmbda});
+  double trFFt = 0;
+  for (double f : F0)
+    trFFt += f * f;
+  const double J = det3(F0);
+  // eq. (5): W = mu/2 (tr F F^T - 3 - 2 ln J) + lambda/2 (J - 1)^2, times the volume.
+  const double W = mu / 2 * (trFFt - 3 - 2 * std::log(J)) + lmbda / 2 * (J - 1) * (J - 1);
+  const double V = m->volume() / J; // reference volume of the mesh
+  EXPECT_NEAR(m->energy("tissue") / (W * V), 1.0, 1e-10);
+}
+
+TEST_P(Energies, GravityPotential)
+{
+  // u = a (constant): E = -rho g.a V.
+  const std::array<double, 3> a = {0.0, 0.004, -0.01}, g = {0.0, -3.0, -9.0};
+  m->displacement()->interpolate(
+      [&](auto&& x)
+      {
+        xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
+        for (std::size_t p = 0; p < x.shape(1); ++p)
+          for (int i = 0; i < 3; ++i)
+            v(i, p) = a[i];
+        return v;
+      });
+  m->set_parameter("rho", {1000.0});
+  m->set_parameter("g_vec", {g[0], g[1], g[2]});
+  m->set_parameter("load", {0.5});
+  const double V = m->volume();
+  const double expected = -1000.0 * 0.5 * (g[0] * a[0] + g[1] * a[1] + g[2] * a[2]) * V;
+  // (P2: the volume functional and the load use different quadrature degrees.)
+  EXPECT_NEAR(m->energy("gravity") / expected, 1.0, 1e-8);
+}
+
+TEST_P(Energies, SkinMembraneUnderDilation)
+{
+  // F = s I: C_s = s^2 P (both surface stretches s), J_s = s^2.
+  const double mu_s = 40000, lmbda_s = 25000, t = 0.002;
+  m->set_parameter("mu_s", {mu_s});
+  m->set_parameter("lmbda_s", {lmbda_s});
+  m->set_parameter("t_s", {t});
+  const double A = m->area("skin");
+  for (double s : {1.08, 0.93})
+  {
+    set_homogeneous(*m, {s, 0, 0, 0, s, 0, 0, 0, s});
+    const double Js = s * s;
+    const double W = mu_s / 2 * (2 * s * s - 2 - 2 * std::log(Js)) + lmbda_s / 2 * (Js - 1) * (Js - 1);
+    m->set_parameter("skin_tension_only", {0.0});
+    EXPECT_NEAR(m->energy("skin") / (t * W * A), 1.0, 1e-10) << "plain, s = " << s;
+    // Relaxed law: identical in tension; for exactly equal surface stretches
+    // (degenerate principal directions) it falls back to the plain law.
+    m->set_parameter("skin_tension_only", {1.0});
+    EXPECT_NEAR(m->energy("skin") / (t * W * A), 1.0, 1e-10) << "relaxed, s = " << s;
+  }
+  // Compression with distinct stretches: the relaxed skin is slack (W = 0).
+  set_homogeneous(*m, {0.90, 0, 0, 0, 0.95, 0, 0, 0, 0.92});
+  m->set_parameter("skin_tension_only", {0.0});
+  const double plain = m->energy("skin");
+  m->set_parameter("skin_tension_only", {1.0});
+  EXPECT_GT(plain, 0.0);
+  EXPECT_LT(m->energy("skin"), 1e-9 * plain);
+}
+
+TEST_P(Energies, SkinRelaxedIsTheLowerEnvelope)
+{
+  // Under a uniaxial stretch the cap's skin has every orientation: parts are
+  // taut, parts wrinkled. The relaxed energy is positive and lies below the
+  // plain membrane energy (it drops the compressive part).
+  const double mu_s = 40000, lmbda_s = 25000;
+  m->set_parameter("mu_s", {mu_s});
+  m->set_parameter("lmbda_s", {lmbda_s});
+  // Uniaxial stretch along y with lateral contraction: on the cap the skin
+  // has every orientation, so parts are taut and parts are wrinkled.
+  set_homogeneous(*m, {0.85, 0, 0, 0, 1.2, 0, 0, 0, 0.85});
+  m->set_parameter("skin_tension_only", {0.0});
+  const double plain = m->energy("skin");
+  m->set_parameter("skin_tension_only", {1.0});
+  const double relaxed = m->energy("skin");
+  EXPECT_GT(relaxed, 0.0);
+  EXPECT_LT(relaxed, plain); // the relaxed energy is the lower envelope
+}
+
+TEST_P(Energies, BaseSprings)
+{
+  // u = a on the base: E = c/2 |a|^2 int (1 + (k - 1) max(0, -Z)/R) dA and
+  // int_{half disc, Z < 0} (-Z) dA = R^3 / 3.
+  const std::array<double, 3> a = {0.001, -0.002, 0.003};
+  m->displacement()->interpolate(
+      [&](auto&& x)
+      {
+        xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
+        for (std::size_t p = 0; p < x.shape(1); ++p)
+          for (int i = 0; i < 3; ++i)
+            v(i, p) = a[i];
+        return v;
+      });
+  const double c0 = 3e5, k = 4.0, R = c.number("geometry.R");
+  const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  m->set_parameter("c", {c0});
+  m->set_parameter("c_fold_ratio", {1.0});
+  EXPECT_NEAR(m->energy("base_springs") / (c0 / 2 * a2 * m->area("base")), 1.0, 1e-10);
+  m->set_parameter("c_fold_ratio", {k});
+  const double expected = c0 / 2 * a2 * (M_PI * R * R / 2 + (k - 1) / R * R * R * R / 3);
+  // The mesh's base is a polygon inscribed in the circle: O(h^2) area error.
+  EXPECT_NEAR(m->energy("base_springs") / expected, 1.0, GetParam() == 1 ? 0.01 : 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(Orders, Energies, ::testing::Values(1, 2),
+                         [](const auto& info) { return "P" + std::to_string(info.param); });
