@@ -30,8 +30,8 @@ t_s = Constant(domain)
 skin_tension_only = Constant(domain)
 
 PARAMETERS = {
-    "mu_s": param("skin.mu", "Pa", 60000.0, 0.0, 1e10, "skin shear modulus"),
-    "lmbda_s": param("skin.lambda", "Pa", 60000.0, 0.0, 1e10, "skin first Lame parameter (in-plane)"),
+    "mu_s": param("skin.mu", "Pa", 20000.0, 0.0, 1e10, "skin shear modulus"),
+    "lmbda_s": param("skin.lambda", "Pa", 20000.0, 0.0, 1e10, "skin first Lame parameter (in-plane)"),
     "t_s": param("skin.thickness", "m", 0.0015, 0.0, 0.05, "skin thickness"),
     "skin_tension_only": param("skin.tension_only", "1", 1.0, 0.0, 1.0,
                                "1: relaxed tension-field membrane (wrinkles, no compression); "

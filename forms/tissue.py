@@ -9,8 +9,8 @@ mu = Constant(domain)
 lmbda = Constant(domain)
 
 PARAMETERS = {
-    "mu": param("tissue.mu", "Pa", 1000.0, 0.0, 1e8, "tissue shear modulus", lo_open=True),
-    "lmbda": param("tissue.lambda", "Pa", 9000.0, 0.0, 1e10,
+    "mu": param("tissue.mu", "Pa", 400.0, 0.0, 1e8, "tissue shear modulus", lo_open=True),
+    "lmbda": param("tissue.lambda", "Pa", 8000.0, 0.0, 1e10,
                    "tissue first Lame parameter (volumetric stiffness)"),
 }
 

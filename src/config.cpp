@@ -24,7 +24,7 @@ KeyInfo num(std::string key, std::string unit, double def, double lo, double hi,
 
 KeyInfo integer(std::string key, std::int64_t def, double lo, double hi, std::string doc)
 {
-  return KeyInfo{std::move(key), KeyType::integer, "1", def, lo, hi, false, {}, std::move(doc)};
+  return KeyInfo{std::move(key), KeyType::integer, "", def, lo, hi, false, {}, std::move(doc)};
 }
 
 KeyInfo boolean(std::string key, bool def, std::string doc)
@@ -66,6 +66,9 @@ std::vector<KeyInfo> build_schema()
       num("solver.rtol", "1", 1e-9, 0.0, 1e-2,
           "Newton tolerance on the residual norm relative to the full external load", true),
       num("solver.atol", "N", 1e-11, 0.0, 1.0, "absolute Newton tolerance on the residual norm"),
+      boolean("solver.reuse_preconditioner", true,
+              "keep the LU factors / AMG hierarchy of an earlier Jacobian while Krylov "
+              "iterations stay few (rebuilt automatically)"),
       integer("solver.max_iterations", 25, 1, 1000, "Newton iterations per load step"),
       num("solver.initial_load_step", "1", 1.0, 0.0, 1.0,
           "first load increment (fraction of the full load)", true),
@@ -436,11 +439,11 @@ void Config::validate() const
   // Cross-key checks.
   const double R = number("geometry.R"), H = number("geometry.H"), h = number("geometry.mesh_size");
   if (H > 1.5 * R)
-    throw InputError(fmt::format("key 'geometry.H' = {} is out of range: allowed (0, 1.5 R] = (0, {}] m "
+    throw InputError(fmt::format("key 'geometry.H' = {} is out of range: allowed (0, 1.5 R] = (0, {:.6g}] m "
                                  "for geometry.R = {}", H, 1.5 * R, R));
   if (h > 0.5 * std::min(R, H) || h < R / 400)
     throw InputError(fmt::format("key 'geometry.mesh_size' = {} is out of range: allowed [R/400, "
-                                 "min(R, H)/2] = [{}, {}] m", h, R / 400, 0.5 * std::min(R, H)));
+                                 "min(R, H)/2] = [{:.6g}, {:.6g}] m", h, R / 400, 0.5 * std::min(R, H)));
   if (number("solver.min_load_step") > number("solver.initial_load_step"))
     throw InputError(fmt::format("key 'solver.min_load_step' = {} exceeds solver.initial_load_step = {}",
                                  number("solver.min_load_step"), number("solver.initial_load_step")));

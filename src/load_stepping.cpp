@@ -12,8 +12,9 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
                             const std::string& context, double reference_norm)
 {
   LoadPathReport rep;
-  std::vector<T> saved(model.displacement()->x()->array().begin(),
-                       model.displacement()->x()->array().end());
+  newton.invalidate_preconditioner(); // the state may have changed since the last solve
+  auto x = model.displacement()->x()->mutable_array();
+  std::vector<T> saved(x.begin(), x.end());
   double s = 0, ds = std::min(1.0, opt.initial_step);
   while (s < 1.0)
   {
@@ -26,7 +27,6 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
     {
       ++rep.steps;
       s = s_try;
-      auto x = model.displacement()->x()->array();
       saved.assign(x.begin(), x.end());
       log::debug("{}: {} = {:.4g} converged in {} Newton iterations", context, parameter,
                  from + s * (to - from), nr.iterations);
@@ -37,7 +37,6 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
     {
       ++rep.failed_steps;
       // Restore the last converged state and cut the step back.
-      auto x = model.displacement()->x()->mutable_array();
       std::copy(saved.begin(), saved.end(), x.begin());
       model.displacement()->x()->scatter_fwd();
       ds *= 0.5;

@@ -37,7 +37,11 @@ void NewtonSolver::setup_ksp()
   KSPGetPC(_ksp, &pc);
   if (_linear == "direct")
   {
-    KSPSetType(_ksp, KSPPREONLY);
+    // LU (MUMPS) of the current or of an earlier Jacobian, inside GMRES so
+    // that a reused factorisation still gives an exact Newton direction.
+    KSPSetType(_ksp, _opt.reuse_preconditioner ? KSPGMRES : KSPPREONLY);
+    KSPSetPCSide(_ksp, PC_RIGHT);
+    KSPSetTolerances(_ksp, 1e-10, 1e-50, 1e8, 60);
     PCSetType(pc, PCLU);
     PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
   }
@@ -47,6 +51,7 @@ void NewtonSolver::setup_ksp()
     // dofs are the near-nullspace, the interpolation is reused across Newton
     // iterations (the sparsity never changes).
     KSPSetType(_ksp, KSPCG);
+    KSPSetNormType(_ksp, KSP_NORM_UNPRECONDITIONED);
     KSPSetTolerances(_ksp, 1e-8, 1e-50, 1e8, 1000);
     PCSetType(pc, PCGAMG);
     PCGAMGSetReuseInterpolation(pc, PETSC_TRUE);
@@ -67,6 +72,37 @@ void NewtonSolver::setup_ksp()
     VecDestroy(&coords);
   }
   KSPSetFromOptions(_ksp); // --petsc-options override the defaults above
+}
+
+int NewtonSolver::linear_solve(std::string& msg)
+{
+  for (int attempt = 0; attempt < 2; ++attempt)
+  {
+    const bool fresh = _stale || !_opt.reuse_preconditioner || attempt == 1;
+    KSPSetReusePreconditioner(_ksp, fresh ? PETSC_FALSE : PETSC_TRUE);
+    // A reused preconditioner gets a short budget: past it, rebuilding is cheaper.
+    KSPSetTolerances(_ksp, _linear == "direct" ? 1e-10 : 1e-8, 1e-50, 1e8,
+                     fresh ? 1000 : std::max(_opt.reuse_max_iterations, 2 * _fresh_iterations));
+    KSPSolve(_ksp, _r, _du);
+    KSPConvergedReason reason;
+    KSPGetConvergedReason(_ksp, &reason);
+    PetscInt its;
+    KSPGetIterationNumber(_ksp, &its);
+    if (fresh)
+    {
+      ++_setups;
+      _stale = false;
+      _fresh_iterations = std::max<int>(1, its);
+    }
+    if (reason > 0)
+    {
+      return static_cast<int>(its);
+    }
+    msg = fmt::format("linear solver failed ({}, {} iterations)", KSPConvergedReasons[reason], its);
+    if (fresh)
+      return -1;
+  }
+  return -1;
 }
 
 double NewtonSolver::residual_norm()
@@ -103,21 +139,19 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     auto t1 = std::chrono::steady_clock::now();
     KSPSetOperators(_ksp, _A, _A);
     VecScale(_r, -1.0);
-    KSPSolve(_ksp, _r, _du);
+    const int kits = linear_solve(rep.message);
     auto t2 = std::chrono::steady_clock::now();
-    KSPConvergedReason kreason;
-    KSPGetConvergedReason(_ksp, &kreason);
-    PetscInt kits;
-    KSPGetIterationNumber(_ksp, &kits);
-    rep.linear_iterations += kits;
-    if (kreason < 0)
-    {
-      rep.message = fmt::format("linear solver failed ({})", KSPConvergedReasons[kreason]);
+    if (kits < 0)
       break;
-    }
+    rep.linear_iterations += kits;
     PetscScalar slope; // dPi/dalpha at alpha = 0: r . du (r is negated)
     VecDot(_r, _du, &slope);
     slope = -slope;
+    if (!(slope < 0))
+    {
+      rep.message = "the Newton direction is not a descent direction (indefinite tangent)";
+      break;
+    }
 
     // Backtracking: accept the first step with det F > 0 everywhere and
     // either an Armijo energy decrease, or (energy change at round-off level)
@@ -136,7 +170,7 @@ NewtonReport NewtonSolver::solve(double reference_norm)
       if (!std::isfinite(e))
         continue;
       const double tiny = 1e-12 * std::max(std::abs(energy), std::abs(e));
-      if (e <= energy + 1e-4 * step * std::min(slope, 0.0))
+      if (e <= energy + 1e-4 * step * slope) // Armijo
         accepted = true;
       else if (std::abs(e - energy) <= tiny)
       {

@@ -17,6 +17,10 @@ struct NewtonOptions
   double atol = 1e-11;                  ///< absolute residual tolerance [N]
   int max_iterations = 25;
   int max_backtracks = 12;              ///< line search halvings
+  /// Keep the preconditioner (LU factors or AMG hierarchy) of an earlier
+  /// Jacobian while the Krylov solver converges quickly with it.
+  bool reuse_preconditioner = true;
+  int reuse_max_iterations = 12;        ///< rebuild when a reused solve needs more
 };
 
 struct NewtonReport
@@ -44,14 +48,25 @@ public:
   double residual_norm();
   /// "direct" or "amg": what the linear solver resolved to.
   const std::string& linear_solver() const { return _linear; }
+  /// Force a fresh preconditioner at the next linear solve (e.g. when the
+  /// state jumps back to the neutral configuration).
+  void invalidate_preconditioner() { _stale = true; }
+  /// Number of preconditioner set-ups (factorisations / AMG hierarchies).
+  int preconditioner_setups() const { return _setups; }
 
 private:
   void setup_ksp();
+  /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
+  /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
+  int linear_solve(std::string& msg);
   Model& _model;
   NewtonOptions _opt;
   std::string _linear;
   Mat _A = nullptr;
   Vec _r = nullptr, _du = nullptr, _u0 = nullptr;
   KSP _ksp = nullptr;
+  bool _stale = true; ///< rebuild the preconditioner at the next solve
+  int _setups = 0;
+  int _fresh_iterations = 1;
 };
 } // namespace breastsim

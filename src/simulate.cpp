@@ -65,6 +65,7 @@ NewtonOptions newton_options(const Config& c)
   o.rtol = c.number("solver.rtol");
   o.atol = c.number("solver.atol");
   o.max_iterations = static_cast<int>(c.integer("solver.max_iterations"));
+  o.reuse_preconditioner = c.flag("solver.reuse_preconditioner");
   return o;
 }
 

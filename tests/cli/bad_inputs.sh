@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Bad input: every case must fail with exit code 2, a message naming the
+# problem, and leave no output folder behind.
+set -u
+BIN="$1"; CASES="$2"
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+fails=0; n=0
+
+expect_error() { # name, expected message fragment, args...
+  local name="$1" frag="$2"; shift 2
+  n=$((n + 1))
+  "$BIN" -q simulate "$@" --out "$work/out_$name" >"$work/$name.out" 2>"$work/$name.err"
+  local code=$?
+  if [ "$code" -ne 2 ]; then
+    echo "FAIL $name: exit code $code (expected 2)"; cat "$work/$name.err"; fails=$((fails + 1)); return
+  fi
+  if ! grep -qF -- "$frag" "$work/$name.err"; then
+    echo "FAIL $name: message lacks '$frag':"; cat "$work/$name.err"; fails=$((fails + 1)); return
+  fi
+  if ls -d "$work"/out_"$name"* >/dev/null 2>&1; then
+    echo "FAIL $name: output left behind"; fails=$((fails + 1)); return
+  fi
+  echo "ok   $name: $(head -c 200 "$work/$name.err")"
+}
+
+printf '[geometry\nR = 0.07\n' > bad.toml
+printf '[geometry]\nR = 0.07\nradius = 3\n' > unknown.toml
+printf '[tissue]\nmu = -5.0\n' > negmu.toml
+printf '[geometry]\nR = 0.0\n' > r0.toml
+printf '[geometry]\nR = -0.07\n' > rneg.toml
+printf '[geometry]\nR = 0.07\nH = 0.5\n' > hbig.toml
+printf '[postures]\ntheta_deg = [200.0]\n' > angle.toml
+printf '[postures]\nnames = ["handstand"]\n' > posture.toml
+printf '[tissue]\nmu = "soft"\n' > type.toml
+printf '[solver]\nlinear = "magic"\n' > choice.toml
+printf '[geometry]\norder = 3\n' > order.toml
+
+expect_error missing_file "does not exist" "$work/nope.toml"
+expect_error bad_toml "not valid TOML" bad.toml
+expect_error unknown_key "unknown key 'geometry.radius'" unknown.toml
+expect_error negative_modulus "key 'tissue.mu' = -5" negmu.toml
+expect_error zero_radius "key 'geometry.R' = 0" r0.toml
+expect_error negative_radius "key 'geometry.R' = -0.07" rneg.toml
+expect_error absurd_height "key 'geometry.H' = 0.5" hbig.toml
+expect_error angle_range "key 'postures.theta_deg'" angle.toml
+expect_error unknown_posture "\"handstand\"" posture.toml
+expect_error wrong_type "expected number" type.toml
+expect_error bad_choice "key 'solver.linear'" choice.toml
+expect_error bad_order "key 'geometry.order' = 3" order.toml
+expect_error bad_set "key 'tissue.lambda' = \"abc\" is not a number" "$CASES/default.toml" --set tissue.lambda=abc
+expect_error set_unknown "unknown key 'tissue.nu'" "$CASES/default.toml" --set tissue.nu=0.3
+expect_error set_syntax "--set expects key=value" "$CASES/default.toml" --set tissue.mu
+
+echo "$((n - fails)) passed, $fails failed"
+[ "$fails" -eq 0 ]

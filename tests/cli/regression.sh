@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The default case's observables against stored reference values.
+# Refresh (after an intended change of the model): run the default case and
+# copy its summary.json to tests/regression/default_summary.json.
+set -eu
+BIN="$1"; CASES="$2"; HERE="$(cd "$(dirname "$0")" && pwd)"
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+"$BIN" -q simulate "$CASES/default.toml" --out "$work/default"
+/usr/bin/python3 "$HERE/compare_json.py" "$work/default/summary.json" "$HERE/../regression/default_summary.json" 1e-6 1e-9
+echo "1 passed, 0 failed"
