@@ -1,0 +1,18 @@
+#pragma once
+// A subcommand of the breastsim CLI: its CLI11 parser and the action run
+// after a successful parse (returns the exit code). Each subcommand lives in
+// its own file and is listed once in main.cpp.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace breastsim::cli
+{
+struct Command
+{
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+Command add_simulate_command(CLI::App& root);
+Command add_keys_command(CLI::App& root);
+} // namespace breastsim::cli
