@@ -8,4 +8,5 @@ TERMS = [
     "gravity",
     "skin",
     "base_springs",
+    "sutures",
 ]

@@ -76,6 +76,13 @@ std::vector<KeyInfo> build_schema()
           "smallest load increment before giving up", true),
       KeyInfo{"solver.petsc_options", KeyType::string, "", std::string(""), -inf, inf, false, {},
               "extra PETSc options, e.g. \"-ksp_type gmres -pc_type hypre\" (override ours)"},
+      num("incision.a_deg", "deg", 30.0, 0.0, 90.0,
+          "surgery: angle a of plane P1 with the symmetry plane", true),
+      num("incision.s", "m", 0.02, 0.0, 0.5, "surgery: height s of the new nipple A above the base centre"),
+      num("incision.h", "m", 0.025, 0.0, 0.5, "surgery: height y_D = h of point D above the base", true),
+      num("incision.d", "m", 0.045, 0.0, 0.5, "surgery: depth of C = (0, 0, -d), the new inframammary fold"),
+      num("surgery.max_gap", "m", 1e-4, 0.0, 0.01,
+          "largest suture gap accepted (the penalty is raised until it is met)", true),
       boolean("output.xdmf", true, "write displacement fields as XDMF (ParaView)"),
       boolean("output.vtk", false, "also write VTK files (native P2)"),
   };
@@ -461,24 +468,32 @@ nlohmann::json Config::to_json() const
 
 std::string Config::to_toml() const
 {
-  // Group keys by section, in schema order.
+  // Group keys by section (sections in order of first appearance, keys in
+  // schema order): a TOML table may only be opened once, and the schema
+  // lists fixed keys (e.g. base.fixed) apart from physics keys (base.c).
   std::string out = "# Resolved breastsim configuration (every key, defaults included)\n";
-  std::string section;
+  std::vector<std::string> sections;
   for (const auto& k : schema())
   {
     const std::string sec = k.key.substr(0, k.key.find('.'));
-    if (sec != section)
+    if (std::find(sections.begin(), sections.end(), sec) == sections.end())
+      sections.push_back(sec);
+  }
+  for (const auto& sec : sections)
+  {
+    out += "\n[" + sec + "]\n";
+    for (const auto& k : schema())
     {
-      section = sec;
-      out += "\n[" + sec + "]\n";
+      if (k.key.substr(0, k.key.find('.')) != sec)
+        continue;
+      const Value& v = _values.at(k.key);
+      std::string text = value_text(v);
+      if (std::holds_alternative<double>(v))
+        text = fmt::format("{:.17g}", std::get<double>(v));
+      if (text.find_first_of(".eEin") == std::string::npos && std::holds_alternative<double>(v))
+        text += ".0";
+      out += k.key.substr(sec.size() + 1) + " = " + text + "\n";
     }
-    const Value& v = _values.at(k.key);
-    std::string text = value_text(v);
-    if (std::holds_alternative<double>(v))
-      text = fmt::format("{:.17g}", std::get<double>(v));
-    if (text.find_first_of(".eEin") == std::string::npos && std::holds_alternative<double>(v))
-      text += ".0";
-    out += k.key.substr(sec.size() + 1) + " = " + text + "\n";
   }
   return out;
 }

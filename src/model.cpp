@@ -160,6 +160,14 @@ std::vector<std::string> Model::term_names() const
   return names;
 }
 
+std::vector<std::int32_t> Model::boundary_nodes(const std::string& tag) const
+{
+  auto facets = tagged_facets(*_mesh.facets, tag_value(tag));
+  auto nodes = fem::locate_dofs_topological(*_V, 2, facets);
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
 std::int64_t Model::num_dofs() const
 {
   return _V->dofmap()->index_map->size_global() * _V->dofmap()->index_map_bs();

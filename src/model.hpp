@@ -53,6 +53,9 @@ public:
     return _bcs;
   }
   const Constraints& constraints() const { return _constraints; }
+  /// Local nodes (blocked dof indices, owned and ghost) on a tagged boundary
+  /// part, sorted.
+  std::vector<std::int32_t> boundary_nodes(const std::string& tag) const;
   /// Global number of displacement unknowns.
   std::int64_t num_dofs() const;
 

@@ -7,6 +7,13 @@
 
 namespace breastsim
 {
+std::string resolved_linear_solver(const NewtonOptions& o, std::int64_t dofs)
+{
+  if (o.linear != "auto")
+    return o.linear;
+  return dofs <= o.direct_max_dofs ? "direct" : "amg";
+}
+
 NewtonSolver::NewtonSolver(Model& model, NewtonOptions options)
     : _model(model), _opt(std::move(options))
 {
@@ -14,9 +21,7 @@ NewtonSolver::NewtonSolver(Model& model, NewtonOptions options)
   _r = _model.create_vector();
   _du = _model.create_vector();
   _u0 = _model.create_vector();
-  _linear = _opt.linear;
-  if (_linear == "auto")
-    _linear = _model.num_dofs() <= _opt.direct_max_dofs ? "direct" : "amg";
+  _linear = resolved_linear_solver(_opt, _model.num_dofs());
   setup_ksp();
 }
 
@@ -139,7 +144,7 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     auto t1 = std::chrono::steady_clock::now();
     KSPSetOperators(_ksp, _A, _A);
     VecScale(_r, -1.0);
-    const int kits = linear_solve(rep.message);
+    int kits = linear_solve(rep.message);
     auto t2 = std::chrono::steady_clock::now();
     if (kits < 0)
       break;
@@ -147,6 +152,32 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     PetscScalar slope; // dPi/dalpha at alpha = 0: r . du (r is negated)
     VecDot(_r, _du, &slope);
     slope = -slope;
+    // Indefinite tangent (e.g. a compressed region far from equilibrium):
+    // shift the diagonal, A_ii += sigma |A_ii|, until the direction descends
+    // (a Levenberg-Marquardt style regularisation; exact Newton near the
+    // solution where the tangent is positive definite).
+    bool shifted = false;
+    for (double sigma = 1e-2; !(slope < 0) && sigma <= 1e2 && kits >= 0; sigma *= 10)
+    {
+      shifted = true;
+      Vec d;
+      VecDuplicate(_r, &d);
+      MatGetDiagonal(_A, d);
+      VecAbs(d);
+      VecScale(d, sigma);
+      MatDiagonalSet(_A, d, ADD_VALUES);
+      VecDestroy(&d);
+      _stale = true; // factor the shifted matrix
+      KSPSetOperators(_ksp, _A, _A);
+      kits = linear_solve(rep.message);
+      if (kits < 0)
+        break;
+      rep.linear_iterations += kits;
+      VecDot(_r, _du, &slope);
+      slope = -slope;
+      log::debug("  newton: indefinite tangent, diagonal shift {:.0e}: slope {:.3e}", sigma, slope);
+    }
+    _stale = _stale || shifted; // never reuse the factors of a shifted matrix
     if (!(slope < 0))
     {
       rep.message = "the Newton direction is not a descent direction (indefinite tangent)";

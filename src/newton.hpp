@@ -32,6 +32,9 @@ struct NewtonReport
   std::string message;
 };
 
+/// "direct" or "amg": what options.linear means for a problem of `dofs` unknowns.
+std::string resolved_linear_solver(const NewtonOptions& options, std::int64_t dofs);
+
 class NewtonSolver
 {
 public:

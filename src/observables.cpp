@@ -1,32 +1,11 @@
 #include "observables.hpp"
-#include "breastsim_registry.hpp"
 #include "errors.hpp"
 #include <algorithm>
 #include <cmath>
-#include <dolfinx/fem/DirichletBC.h>
 #include <limits>
 
 namespace breastsim
 {
-namespace
-{
-std::vector<std::int32_t> nodes_on(const Model& m, const std::string& tag)
-{
-  int value = -1;
-  for (const auto& t : generated::tags())
-    if (t.name == tag)
-      value = t.value;
-  const auto& tags = *m.mesh().facets;
-  std::vector<std::int32_t> facets;
-  for (std::size_t i = 0; i < tags.values().size(); ++i)
-    if (tags.values()[i] == value)
-      facets.push_back(tags.indices()[i]);
-  auto nodes = dolfinx::fem::locate_dofs_topological(*m.space(), 2, facets);
-  std::sort(nodes.begin(), nodes.end());
-  return nodes;
-}
-} // namespace
-
 nlohmann::json to_json(const Observables& o)
 {
   return {{"nipple_m", o.nipple},          {"projection_m", o.projection},
@@ -38,8 +17,8 @@ nlohmann::json to_json(const Observables& o)
 ObservableProbe::ObservableProbe(const Model& m, std::array<double, 3> p)
 {
   _X = m.space()->tabulate_dof_coordinates(false);
-  _skin = nodes_on(m, "skin");
-  const auto base = nodes_on(m, "base");
+  _skin = m.boundary_nodes("skin");
+  const auto base = m.boundary_nodes("base");
   std::set_intersection(_skin.begin(), _skin.end(), base.begin(), base.end(), std::back_inserter(_rim));
 
   // Nipple: the skin node nearest to the reference point, over all ranks.

@@ -3,6 +3,8 @@
 #include "breastsim_registry.hpp"
 #include "log.hpp"
 #include "output.hpp"
+#include "surface_export.hpp"
+#include "viewer.hpp"
 #include <chrono>
 #include <fmt/format.h>
 
@@ -139,9 +141,25 @@ std::string observables_table(const std::vector<PostureResult>& rs)
   return s;
 }
 
+std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
+                                          const Config& c, const std::filesystem::path& dir)
+{
+  NewtonSolver newton(model, newton_options(c));
+  std::vector<PostureResult> out;
+  for (const auto& p : requested_postures(c))
+  {
+    log::info("solving posture '{}' (theta = {:g} deg)", p.name, p.theta_deg);
+    out.push_back(solve_posture(model, newton, probe, p, c));
+    write_fields(model, dir / ("displacement_" + p.name), c.flag("output.xdmf"), c.flag("output.vtk"));
+    write_surface(model, p.name, p.theta_deg, dir / ("surface_" + p.name + ".json"));
+  }
+  return out;
+}
+
 SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI_Comm comm)
 {
   SimulationResult res;
+  check_picture_tools(comm); // fail before the solves, not after
   auto t0 = clock_type::now();
   auto mesh = build_neutral_mesh(c, comm);
   res.mesh_seconds = since(t0);
@@ -154,8 +172,7 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
   Model model(mesh, Constraints{true, c.flag("base.fixed")});
   apply_parameters(c, model);
   res.dofs = model.num_dofs();
-  NewtonSolver newton(model, newton_options(c));
-  res.linear_solver = newton.linear_solver();
+  res.linear_solver = resolved_linear_solver(newton_options(c), res.dofs);
   ObservableProbe probe(model, {0.0, c.number("geometry.H"), 0.0});
   log::info("model: {} unknowns, linear solver {}, terms on: {}", res.dofs, res.linear_solver,
             [&] {
@@ -167,13 +184,7 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
             }());
 
   OutputDir dir(out, comm);
-  for (const auto& p : requested_postures(c))
-  {
-    log::info("solving posture '{}' (theta = {:g} deg)", p.name, p.theta_deg);
-    res.postures.push_back(solve_posture(model, newton, probe, p, c));
-    write_fields(model, dir.path() / ("displacement_" + p.name), c.flag("output.xdmf"),
-                 c.flag("output.vtk"));
-  }
+  res.postures = solve_postures(model, probe, c, dir.path());
 
   nlohmann::json j;
   j["case"] = c.text("case.name");
@@ -190,6 +201,7 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
     j["postures"].push_back(to_json(r));
   write_json(dir.path() / "summary.json", j, comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
+  render_pictures(dir.path(), {}, comm);
   dir.commit();
   return res;
 }

@@ -42,6 +42,11 @@ std::vector<Posture> requested_postures(const Config& c);
 PostureResult solve_posture(Model& model, NewtonSolver& newton, const ObservableProbe& probe,
                             const Posture& posture, const Config& c);
 
+/// Solve every requested posture of the case from the model's current
+/// reference and write each displacement as <dir>/displacement_<posture>.
+std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
+                                          const Config& c, const std::filesystem::path& dir);
+
 /// The whole `simulate` job. Writes into `out` (replaced only on success).
 SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI_Comm comm);
 

@@ -4,6 +4,7 @@
 #include "model.hpp"
 #include "load_stepping.hpp"
 #include "simulate.hpp"
+#include "surgery.hpp"
 #include <dolfinx/la/petsc.h>
 #include <random>
 
@@ -27,6 +28,9 @@ inline std::unique_ptr<Model> make_model(const Config& c)
   apply_parameters(c, *m);
   return m;
 }
+
+/// Model of the remaining body after the case's incision (suture faces tagged).
+std::unique_ptr<Model> make_incised_model(const Config& c);
 
 /// Fill u with dilation * X plus a smooth random-ish field of amplitude `amp`
 /// (constrained dofs zeroed).
@@ -75,5 +79,22 @@ inline double max_abs_u(const Model& m)
   double global = 0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   return global;
+}
+} // namespace breastsim::fixtures
+
+namespace breastsim::fixtures
+{
+inline std::unique_ptr<Model> make_incised_model(const Config& c)
+{
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  meshes::TaggedMesh tm;
+  const int order = static_cast<int>(c.integer("geometry.order"));
+  tm.order = order;
+  if (rank == 0)
+    tm = meshes::mesh_incised_cap(cap_spec(c), incision_spec(c), {1, 2, 3, 4, 5});
+  auto m = std::make_unique<Model>(to_dolfinx(MPI_COMM_WORLD, tm, order));
+  apply_parameters(c, *m);
+  return m;
 }
 } // namespace breastsim::fixtures

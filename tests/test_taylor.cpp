@@ -49,7 +49,8 @@ TEST_P(Taylor, SecondOrderRemainders)
   auto c = fixtures::coarse_case(order, order == 1 ? 0.014 : 0.02);
   c.set("base.c_fold_ratio", 3.0); // exercise the spatially varying bed
   c.set("skin.tension_only", tension_only);
-  auto m = fixtures::make_model(c);
+  auto m = term == "sutures" ? fixtures::make_incised_model(c) : fixtures::make_model(c);
+  m->set_parameter("closure", {0.6});
   m->set_parameter("g_vec", {0.0, -4.0, -9.0});
   fixtures::perturb(*m, 2e-3, 1, dilation);
   const auto u = copy(*m);
@@ -133,7 +134,8 @@ INSTANTIATE_TEST_SUITE_P(
                       TaylorCase{"base_springs", 1, 1}, TaylorCase{"", 2, 0},
                       TaylorCase{"", 2, 1}, TaylorCase{"tissue", 2, 1}, TaylorCase{"skin", 2, 0},
                       TaylorCase{"skin", 2, 1}, TaylorCase{"skin", 2, 1, 0.1},
-                      TaylorCase{"base_springs", 2, 1}),
+                      TaylorCase{"base_springs", 2, 1}, TaylorCase{"sutures", 1, 1},
+                      TaylorCase{"sutures", 2, 1}),
     [](const auto& info)
     {
       const auto& p = info.param;

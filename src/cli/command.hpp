@@ -15,4 +15,9 @@ struct Command
 
 Command add_simulate_command(CLI::App& root);
 Command add_keys_command(CLI::App& root);
+Command add_calibrate_command(CLI::App& root); // and `measure` (calibrate_command.cpp)
+Command add_measure_command(CLI::App& root);
+Command add_view_command(CLI::App& root);
+Command add_surgery_command(CLI::App& root);
+Command add_sweep_command(CLI::App& root);
 } // namespace breastsim::cli

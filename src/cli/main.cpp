@@ -20,6 +20,10 @@ int main(int argc, char** argv)
   const std::vector<cli::Command> commands = {
       cli::add_simulate_command(app),
       cli::add_keys_command(app),
+      cli::add_calibrate_command(app), cli::add_measure_command(app),
+      cli::add_view_command(app),
+      cli::add_surgery_command(app),
+      cli::add_sweep_command(app),
   };
 
   try

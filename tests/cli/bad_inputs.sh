@@ -7,10 +7,10 @@ work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 fails=0; n=0
 
-expect_error() { # name, expected message fragment, args...
+expect_error() { # name, expected message fragment, subcommand args...
   local name="$1" frag="$2"; shift 2
   n=$((n + 1))
-  "$BIN" -q simulate "$@" --out "$work/out_$name" >"$work/$name.out" 2>"$work/$name.err"
+  "$BIN" -q "$@" --out "$work/out_$name" >"$work/$name.out" 2>"$work/$name.err"
   local code=$?
   if [ "$code" -ne 2 ]; then
     echo "FAIL $name: exit code $code (expected 2)"; cat "$work/$name.err"; fails=$((fails + 1)); return
@@ -36,21 +36,29 @@ printf '[tissue]\nmu = "soft"\n' > type.toml
 printf '[solver]\nlinear = "magic"\n' > choice.toml
 printf '[geometry]\norder = 3\n' > order.toml
 
-expect_error missing_file "does not exist" "$work/nope.toml"
-expect_error bad_toml "not valid TOML" bad.toml
-expect_error unknown_key "unknown key 'geometry.radius'" unknown.toml
-expect_error negative_modulus "key 'tissue.mu' = -5" negmu.toml
-expect_error zero_radius "key 'geometry.R' = 0" r0.toml
-expect_error negative_radius "key 'geometry.R' = -0.07" rneg.toml
-expect_error absurd_height "key 'geometry.H' = 0.5" hbig.toml
-expect_error angle_range "key 'postures.theta_deg'" angle.toml
-expect_error unknown_posture "\"handstand\"" posture.toml
-expect_error wrong_type "expected number" type.toml
-expect_error bad_choice "key 'solver.linear'" choice.toml
-expect_error bad_order "key 'geometry.order' = 3" order.toml
-expect_error bad_set "key 'tissue.lambda' = \"abc\" is not a number" "$CASES/default.toml" --set tissue.lambda=abc
-expect_error set_unknown "unknown key 'tissue.nu'" "$CASES/default.toml" --set tissue.nu=0.3
-expect_error set_syntax "--set expects key=value" "$CASES/default.toml" --set tissue.mu
+expect_error missing_file "does not exist" simulate "$work/nope.toml"
+expect_error bad_toml "not valid TOML" simulate bad.toml
+expect_error unknown_key "unknown key 'geometry.radius'" simulate unknown.toml
+expect_error negative_modulus "key 'tissue.mu' = -5" simulate negmu.toml
+expect_error zero_radius "key 'geometry.R' = 0" simulate r0.toml
+expect_error negative_radius "key 'geometry.R' = -0.07" simulate rneg.toml
+expect_error absurd_height "key 'geometry.H' = 0.5" simulate hbig.toml
+expect_error angle_range "key 'postures.theta_deg'" simulate angle.toml
+expect_error unknown_posture "\"handstand\"" simulate posture.toml
+expect_error wrong_type "expected number" simulate type.toml
+expect_error bad_choice "key 'solver.linear'" simulate choice.toml
+expect_error bad_order "key 'geometry.order' = 3" simulate order.toml
+expect_error bad_set "key 'tissue.lambda' = \"abc\" is not a number" simulate "$CASES/default.toml" --set tissue.lambda=abc
+expect_error set_unknown "unknown key 'tissue.nu'" simulate "$CASES/default.toml" --set tissue.nu=0.3
+expect_error set_syntax "--set expects key=value" simulate "$CASES/default.toml" --set tissue.mu
+
+# Surgery: incision parameters that make a point undefined are rejected
+# before any meshing, naming the parameter.
+expect_error incision_s "key 'incision.s'" surgery "$CASES/default.toml" --set incision.s=0.09
+expect_error incision_h "key 'incision.h'" surgery "$CASES/default.toml" --set incision.h=0.07
+expect_error incision_angle "key 'incision.a_deg'" surgery "$CASES/default.toml" --set incision.a_deg=60
+expect_error incision_d "key 'incision.d'" surgery "$CASES/default.toml" --set incision.d=0.08
+expect_error sweep_vary "unknown key 'q'" sweep "$CASES/default.toml" --vary q=1,2
 
 echo "$((n - fails)) passed, $fails failed"
 [ "$fails" -eq 0 ]

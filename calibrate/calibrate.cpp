@@ -1,0 +1,182 @@
+#include "calibrate.hpp"
+#include "checkpoint.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "misfit.hpp"
+#include "output.hpp"
+#include "uncertainty.hpp"
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace breastsim::calibration
+{
+namespace
+{
+std::string parameter_text(const std::vector<FitParameter>& fit, const std::vector<double>& y)
+{
+  std::string s;
+  for (std::size_t j = 0; j < fit.size(); ++j)
+    s += fmt::format("{}{} = {:.5g} {}", j ? ", " : "", fit[j].name, std::exp(y[j]), fit[j].unit);
+  return s;
+}
+
+nlohmann::json misfit_json(const Measurements& data, const std::vector<Observables>& before,
+                           const std::vector<Observables>& after)
+{
+  auto rows = nlohmann::json::array();
+  for (const auto& m : data.items)
+  {
+    const double b = model_value(m, before), a = model_value(m, after);
+    rows.push_back({{"measurement", m.label},
+                    {"measured", m.value},
+                    {"sigma", m.sigma},
+                    {"model_before", b},
+                    {"model_after", a},
+                    {"weighted_residual_before", (b - m.value) / m.sigma},
+                    {"weighted_residual_after", (a - m.value) / m.sigma}});
+  }
+  return rows;
+}
+} // namespace
+
+CalibrationResult calibrate(const Config& start, const Measurements& data,
+                            const std::vector<FitParameter>& fit, const CalibrateOptions& o,
+                            MPI_Comm comm)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  check_algorithm(o.optimizer.algorithm);
+  check_identifiable(fit);
+  Checkpoint cp;
+  if (o.resume)
+    cp = read_checkpoint(o.checkpoint, fit);
+  std::vector<std::string> names;
+  for (const auto& p : fit)
+    names.push_back(p.name);
+
+  ForwardModel forward(data.postures, comm);
+  Objective f(start, data, fit, forward, cp.evaluations);
+  f.on_evaluation(
+      [&](const Evaluation& e)
+      {
+        log::info("eval {:>4}  chi2 = {:<12.6g} {}{}", e.index, e.chi2, parameter_text(fit, e.y),
+                  e.best ? "  *" : "");
+        if (!o.checkpoint.empty())
+          write_checkpoint(o.checkpoint, {names, f.best_y(), f.best_chi2(), e.index});
+      });
+
+  if (o.resume)
+    f.set_best(cp.best_y, cp.best_chi2); // the checkpoint keeps the best point
+  // Misfit of the starting case (the "before" column of the report).
+  const std::vector<double> y_case = to_log(fit, start);
+  const double chi2_before = f.chi2(y_case);
+  const std::vector<Observables> obs_before = f.observables();
+  const std::vector<double> y0 = o.resume ? cp.best_y : y_case;
+  if (o.resume)
+    log::info("resuming after {} evaluations from {} (chi2 = {:.6g})", cp.evaluations,
+              parameter_text(fit, y0), cp.best_chi2);
+
+  OptimizerOptions oo = o.optimizer;
+  OptimizerResult res;
+  const int done = f.evaluations();
+  oo.max_evals = o.resume ? oo.max_evals - cp.evaluations : oo.max_evals;
+  if (oo.max_evals > 0)
+    res = minimise(f, y0, oo);
+  else
+    res = {f.best_y(), f.best_chi2(), "evaluation budget (--max-evals) used up before resuming"};
+  log::info("optimiser ({}): {} after {} evaluations", oo.algorithm, res.stop_reason,
+            f.evaluations() - done);
+
+  // Observables and uncertainty at the optimum.
+  const double chi2_after = f.chi2(res.y);
+  const std::vector<Observables> obs_after = f.observables();
+  const Matrix J = f.jacobian(res.y, oo.fd_step);
+  const std::size_t m = data.items.size(), n = fit.size();
+  const double reduced_chi2 = m > n ? chi2_after / double(m - n) : std::nan("");
+  const double variance_factor = reduced_chi2 > 1 ? reduced_chi2 : 1.0;
+  if (variance_factor > 1)
+    log::warn("reduced chi2 = {:.3g} > 1: the model does not fit within the stated sigmas (model "
+              "or discretisation error, or optimistic sigmas); intervals widened by {:.3g}",
+              reduced_chi2, std::sqrt(variance_factor));
+  const Uncertainty u = gauss_newton_uncertainty(J, res.y, names, variance_factor);
+
+  CalibrationResult out;
+  out.calibrated = with_parameters(start, fit, res.y);
+  nlohmann::json& rep = out.report;
+  rep["measurements"] = o.measurements_source;
+  rep["algorithm"] = oo.algorithm;
+  rep["stop_reason"] = res.stop_reason;
+  rep["fit"] = nlohmann::json::array();
+  auto warnings = nlohmann::json::array();
+  for (std::size_t j = 0; j < fit.size(); ++j)
+  {
+    const double p = std::exp(res.y[j]);
+    rep["fit"].push_back({{"name", fit[j].name},
+                          {"key", fit[j].key},
+                          {"unit", fit[j].unit},
+                          {"initial", std::exp(y_case[j])},
+                          {"fitted", p},
+                          {"standard_error", p * u.se_log[j]},
+                          {"relative_standard_error", u.se_log[j]},
+                          {"interval_95", {u.interval[j][0], u.interval[j][1]}},
+                          {"bounds", {fit[j].lower, fit[j].upper}},
+                          {"at_bound", p <= fit[j].lower * (1 + 1e-6) || p >= fit[j].upper * (1 - 1e-6)},
+                          {"flag", u.flags[j]}});
+    if (!u.flags[j].empty())
+    {
+      warnings.push_back(fit[j].name + ": " + u.flags[j]);
+      log::warn("{}: {}", fit[j].name, u.flags[j]);
+    }
+  }
+  rep["correlation"] = {{"parameters", names}, {"matrix", u.correlation}};
+  rep["misfit"] = {{"chi2_before", chi2_before},
+                   {"chi2_after", chi2_after},
+                   {"measurements", m},
+                   {"reduced_chi2_after", reduced_chi2},
+                   {"interval_widening", std::sqrt(variance_factor)},
+                   {"per_measurement", misfit_json(data, obs_before, obs_after)}};
+  rep["warnings"] = warnings;
+  rep["evaluations"] = f.evaluations();
+  rep["posture_solves"] = forward.posture_solves();
+  rep["warm_started_solves"] = forward.warm_starts();
+  rep["meshes_built"] = forward.meshes_built();
+  rep["unknowns"] = forward.dofs();
+  rep["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm)
+{
+  OutputDir dir(out, comm);
+  write_text(dir.path() / "calibrated.toml", r.calibrated.to_toml(), comm);
+  write_json(dir.path() / "report.json", r.report, comm);
+  dir.commit();
+}
+
+std::string calibration_table(const nlohmann::json& rep)
+{
+  std::string s = fmt::format("{:<10} {:>12} {:>12} {:>9} {:>27}  {}\n", "parameter", "initial",
+                              "fitted", "rel. SE", "95 % interval", "unit");
+  for (const auto& p : rep["fit"])
+  {
+    const double se = p["relative_standard_error"].is_number()
+                          ? p["relative_standard_error"].get<double>()
+                          : std::nan("");
+    s += fmt::format("{:<10} {:>12.5g} {:>12.5g} {:>8.2f}% [{:>12.5g}, {:>12.5g}]  {}{}\n",
+                     p["name"].get<std::string>(), p["initial"].get<double>(),
+                     p["fitted"].get<double>(), 100 * se,
+                     p["interval_95"][0].is_number() ? p["interval_95"][0].get<double>() : 0.0,
+                     p["interval_95"][1].is_number() ? p["interval_95"][1].get<double>()
+                                                     : std::numeric_limits<double>::infinity(),
+                     p["unit"].get<std::string>(),
+                     p["flag"].get<std::string>().empty() ? "" : "  ! " + p["flag"].get<std::string>());
+  }
+  s += fmt::format("chi2 {:.4g} -> {:.4g} ({} measurements); {} evaluations, {} posture solves "
+                   "({} warm-started), {:.1f} s\n",
+                   rep["misfit"]["chi2_before"].get<double>(), rep["misfit"]["chi2_after"].get<double>(),
+                   rep["misfit"]["measurements"].get<int>(), rep["evaluations"].get<int>(),
+                   rep["posture_solves"].get<int>(), rep["warm_started_solves"].get<int>(),
+                   rep["wall_time_s"].get<double>());
+  return s;
+}
+} // namespace breastsim::calibration

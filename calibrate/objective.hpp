@@ -1,0 +1,66 @@
+#pragma once
+// The calibration objective in log-space coordinates y = ln(p):
+//   r(y) = weighted residuals (misfit.hpp),  chi2(y) = |r(y)|^2,
+// its finite-difference Jacobian J = dr/dy (forward differences of
+// warm-started solves) and gradient d chi2/dy = 2 J^T r. Counts evaluations,
+// keeps the best point and reports progress after each evaluation.
+#include "fit_parameters.hpp"
+#include "forward_model.hpp"
+#include "measurements.hpp"
+#include <functional>
+#include <vector>
+
+namespace breastsim::calibration
+{
+/// Dense m x n matrix, row-major: J[i][j] = d r_i / d y_j.
+using Matrix = std::vector<std::vector<double>>;
+
+struct Evaluation
+{
+  int index = 0;            ///< 1-based evaluation count (including resumed ones)
+  std::vector<double> y;
+  double chi2 = 0;
+  bool best = false;        ///< the best point so far
+};
+
+class Objective
+{
+public:
+  Objective(Config base, const Measurements& data, std::vector<FitParameter> fit,
+            ForwardModel& forward, int evaluations_done = 0);
+
+  /// Called after every new evaluation (progress lines, checkpoint).
+  void on_evaluation(std::function<void(const Evaluation&)> f) { _callback = std::move(f); }
+
+  /// Weighted residuals at y (one forward solve of every posture; the last
+  /// point is remembered and not solved again).
+  const std::vector<double>& residuals(const std::vector<double>& y);
+  double chi2(const std::vector<double>& y);
+  /// Observables of each posture at the last evaluated point.
+  const std::vector<Observables>& observables() const { return _obs; }
+
+  /// J = dr/dy by forward differences with step h * fd_step_factor (central if `central`).
+  Matrix jacobian(const std::vector<double>& y, double h, bool central = false);
+  /// d chi2/dy = 2 J^T r with the forward-difference Jacobian.
+  std::vector<double> gradient(const std::vector<double>& y, double h);
+
+  int evaluations() const { return _evaluations; }
+  const std::vector<double>& best_y() const { return _best_y; }
+  double best_chi2() const { return _best_chi2; }
+  /// Start the record of the best point (e.g. from a checkpoint).
+  void set_best(const std::vector<double>& y, double chi2);
+  const std::vector<FitParameter>& fit() const { return _fit; }
+  const Config& base() const { return _base; }
+
+private:
+  Config _base;
+  const Measurements& _data;
+  std::vector<FitParameter> _fit;
+  ForwardModel& _forward;
+  std::function<void(const Evaluation&)> _callback;
+  int _evaluations = 0;
+  std::vector<double> _last_y, _last_r, _best_y;
+  std::vector<Observables> _obs;
+  double _best_chi2 = 0;
+};
+} // namespace breastsim::calibration

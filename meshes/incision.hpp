@@ -1,0 +1,43 @@
+#pragma once
+// The incision of a breast reduction (SPEC.md, "Incision") on the neutral
+// half cap: points A, B, C, D and planes P1 ("ABD") and P2 ("BCD") from the
+// parameters (a, s, h, d); the resected region; and the remeshed remaining
+// body with its two cut faces tagged.
+#include "half_cap.hpp"
+#include <array>
+
+namespace breastsim::meshes
+{
+using Point = std::array<double, 3>;
+
+struct IncisionSpec
+{
+  double a_deg = 30; ///< angle of P1 with the symmetry plane [deg]
+  double s = 0.02;   ///< height of the new nipple A above the base centre [m]
+  double h = 0.02;   ///< height y_D of D above the base [m]
+  double d = 0.05;   ///< depth of C = (0, 0, -d) below the base centre [m]
+};
+
+/// Points and planes of an incision on the cap (R, H). Planes as n . p = c
+/// with n pointing into the remaining body.
+struct IncisionGeometry
+{
+  Point A, B, C, D;
+  Point n1; double c1; ///< P1: x cos a + (z - s) sin a = 0
+  Point n2; double c2; ///< P2: through C and D, parallel to e_x
+  /// True if p (reference frame) lies in the resected region:
+  /// the keel {x < (s - z) tan a} or the far side of P2 from A.
+  bool resected(const Point& p) const;
+};
+
+/// Construct A, B, C, D, P1, P2. Throws InputError naming the parameter when
+/// a point does not exist on the cap or the cut is empty or everything.
+IncisionGeometry incision_geometry(const HalfCapSpec& cap, const IncisionSpec& inc);
+
+/// Mesh the remaining body: physical surface groups base, skin, symmetry,
+/// suture_abd (on P1) and suture_bcd (on P2) with the given tag values
+/// {base, skin, symmetry, suture_abd, suture_bcd}. Also returns the remaining
+/// (half-model) volume from the CAD.
+TaggedMesh mesh_incised_cap(const HalfCapSpec& cap, const IncisionSpec& inc,
+                            const std::array<int, 5>& tags, double* cad_volume = nullptr);
+} // namespace breastsim::meshes

@@ -1,0 +1,132 @@
+// `breastsim calibrate MEASUREMENTS.json`: fit case parameters to measurements.
+// `breastsim measure CASE.toml`: synthetic measurements from the forward model.
+#include "../config.hpp"
+#include "../errors.hpp"
+#include "../log.hpp"
+#include "../output.hpp"
+#include "calibrate.hpp"
+#include "command.hpp"
+#include "overrides.hpp"
+#include "synthetic.hpp"
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+namespace breastsim::cli
+{
+Command add_calibrate_command(CLI::App& root)
+{
+  struct Options
+  {
+    std::string measurements, case_file, fit = "mu,c", algorithm = "bobyqa", out, checkpoint,
+                                          petsc_options;
+    std::vector<std::string> sets;
+    bool resume = false;
+    int max_evals = 200;
+  };
+  auto o = std::make_shared<Options>();
+  auto* app = root.add_subcommand(
+      "calibrate", "fit tissue/skin/spring parameters and the neutral shape to measurements in "
+                   "several postures (docs/CALIBRATION.md)");
+  app->add_option("measurements", o->measurements, "measurement file (JSON, SI units)")->required();
+  app->add_option("--case", o->case_file,
+                  "starting case (TOML); its values are the initial guess (default: built-in "
+                  "defaults)");
+  app->add_option("--set", o->sets, "override a case key, e.g. --set geometry.mesh_size=0.012");
+  app->add_option("--fit", o->fit, "parameters to fit, comma separated: mu, lambda, mu_s, "
+                                   "lambda_s, c, R, H, rho")
+      ->capture_default_str();
+  app->add_option("--algorithm", o->algorithm,
+                  "bobyqa, sbplx, neldermead (derivative-free); lbfgs, slsqp, mma (finite-"
+                  "difference gradients)")
+      ->capture_default_str();
+  app->add_option("--max-evals", o->max_evals, "objective evaluations allowed (in total with "
+                                               "--resume)")
+      ->capture_default_str();
+  app->add_option("--out", o->out, "output folder (default results/<case.name>_calibrated); "
+                                   "replaced on success");
+  app->add_option("--checkpoint", o->checkpoint, "checkpoint file (default <out>.checkpoint.json)");
+  app->add_flag("--resume", o->resume, "continue from the checkpoint's best point");
+  app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
+  return {app, [o]()
+          {
+            Config c = o->case_file.empty() ? Config() : load_case(o->case_file, {});
+            if (o->case_file.empty())
+              for (const auto& s : o->sets) // same syntax as load_case
+              {
+                const auto eq = s.find('=');
+                if (eq == std::string::npos || eq == 0)
+                  throw InputError("--set expects key=value, got '" + s + "'");
+                c.set_text(s.substr(0, eq), s.substr(eq + 1));
+              }
+            else
+              c = load_case(o->case_file, o->sets);
+            c.validate();
+            insert_petsc_options(c, o->petsc_options);
+            if (o->max_evals < 1)
+              throw InputError(fmt::format("--max-evals = {} must be >= 1", o->max_evals));
+            const auto data = calibration::read_measurements(o->measurements);
+            const auto fit = calibration::parse_fit(o->fit, c);
+            calibration::check_algorithm(o->algorithm);
+            const std::string out
+                = o->out.empty() ? "results/" + c.text("case.name") + "_calibrated" : o->out;
+            calibration::CalibrateOptions co;
+            co.optimizer.algorithm = o->algorithm;
+            co.optimizer.max_evals = o->max_evals;
+            co.checkpoint = o->checkpoint.empty() ? out + ".checkpoint.json" : o->checkpoint;
+            co.resume = o->resume;
+            co.measurements_source = o->measurements;
+            log::info("calibrating [{}] with {} against {} measurements in {} postures", o->fit,
+                      o->algorithm, data.items.size(), data.postures.size());
+            const auto res = calibration::calibrate(c, data, fit, co, MPI_COMM_WORLD);
+            calibration::write_calibration(res, out, MPI_COMM_WORLD);
+            if (log::is_root())
+            {
+              std::cout << calibration::calibration_table(res.report);
+              std::cout << "results written to " << out
+                        << "/ (calibrated.toml for `breastsim simulate`, report.json)\n";
+            }
+            return 0;
+          }};
+}
+
+Command add_measure_command(CLI::App& root)
+{
+  struct Options
+  {
+    std::string case_file, out;
+    std::vector<std::string> sets;
+    double mesh_size = 0, noise = 5e-4, sigma = 0;
+    unsigned seed = 1;
+  };
+  auto o = std::make_shared<Options>();
+  auto* app = root.add_subcommand("measure", "synthetic measurements of a case (forward model on "
+                                             "a finer mesh plus Gaussian noise), in the "
+                                             "calibrate input format");
+  app->add_option("case", o->case_file, "case file (TOML) holding the true parameters")->required();
+  app->add_option("--out", o->out, "measurement file to write (JSON)")->required();
+  app->add_option("--set", o->sets, "override a case key (repeatable)");
+  app->add_option("--mesh-size", o->mesh_size, "mesh size of the truth [m] (default: half the "
+                                               "case's geometry.mesh_size)");
+  app->add_option("--noise", o->noise, "standard deviation of the added noise [m]")->capture_default_str();
+  app->add_option("--sigma", o->sigma, "sigma written into the file [m] (default: --noise, or "
+                                       "0.5 mm without noise)");
+  app->add_option("--seed", o->seed, "random seed of the noise")->capture_default_str();
+  return {app, [o]()
+          {
+            Config c = load_case(o->case_file, o->sets);
+            c.set("geometry.mesh_size",
+                  o->mesh_size > 0 ? o->mesh_size : 0.5 * c.number("geometry.mesh_size"));
+            c.validate();
+            calibration::SyntheticOptions so;
+            so.noise = o->noise;
+            so.sigma = o->sigma > 0 ? o->sigma : (o->noise > 0 ? o->noise : 5e-4);
+            so.seed = o->seed;
+            const auto doc = calibration::synthetic_measurements(c, so, MPI_COMM_WORLD);
+            write_json(o->out, doc, MPI_COMM_WORLD);
+            if (log::is_root())
+              std::cout << "measurements written to " << o->out << "\n";
+            return 0;
+          }};
+}
+} // namespace breastsim::cli

@@ -1,0 +1,39 @@
+// `breastsim surgery CASE.toml`: incision, sutures, final neutral state and
+// post-operative postures.
+#include "../log.hpp"
+#include "../surgery.hpp"
+#include "command.hpp"
+#include "overrides.hpp"
+#include <iostream>
+#include <memory>
+
+namespace breastsim::cli
+{
+Command add_surgery_command(CLI::App& root)
+{
+  struct Options
+  {
+    std::string case_file, out, petsc_options;
+    std::vector<std::string> sets;
+  };
+  auto o = std::make_shared<Options>();
+  auto* app = root.add_subcommand(
+      "surgery", "breast reduction: incision (a, s, h, d), sutures, final neutral state, post-op postures");
+  app->add_option("case", o->case_file, "case file with [incision] (a_deg, s, h, d); see `breastsim keys`")
+      ->required();
+  app->add_option("--set", o->sets, "override a case key, e.g. --set incision.a_deg=35 (repeatable)")
+      ->allow_extra_args(false);
+  app->add_option("--out", o->out, "output folder (default results/<case.name>-surgery); replaced on success");
+  app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
+  return {app, [o]()
+          {
+            Config c = load_case(o->case_file, o->sets);
+            insert_petsc_options(c, o->petsc_options);
+            const std::string out = o->out.empty() ? "results/" + c.text("case.name") + "-surgery" : o->out;
+            auto r = surgery(c, out, MPI_COMM_WORLD);
+            if (log::is_root())
+              std::cout << surgery_table(r) << "results written to " << out << "/\n";
+            return 0;
+          }};
+}
+} // namespace breastsim::cli

@@ -1,0 +1,60 @@
+// `breastsim sweep CASE.toml --vary a=25,30,35 --vary h=0.02,0.03`: the
+// surgery on a grid of incisions, one table.
+#include "../errors.hpp"
+#include "../log.hpp"
+#include "../sweep.hpp"
+#include "command.hpp"
+#include "overrides.hpp"
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace breastsim::cli
+{
+Command add_sweep_command(CLI::App& root)
+{
+  struct Options
+  {
+    std::string case_file, out, petsc_options;
+    std::vector<std::string> sets, vary;
+  };
+  auto o = std::make_shared<Options>();
+  auto* app = root.add_subcommand("sweep", "run the surgery over a grid of incision parameters");
+  app->add_option("case", o->case_file, "case file (see `breastsim keys`)")->required();
+  app->add_option("--vary", o->vary,
+                  "NAME=v1,v2,... with NAME one of a (deg), s, h, d (m) or any case key (repeatable)")
+      ->required()
+      ->allow_extra_args(false);
+  app->add_option("--set", o->sets, "override a case key (repeatable)")->allow_extra_args(false);
+  app->add_option("--out", o->out, "output folder (default results/<case.name>-sweep)");
+  app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
+  return {app, [o]()
+          {
+            Config c = load_case(o->case_file, o->sets);
+            insert_petsc_options(c, o->petsc_options);
+            std::vector<std::pair<std::string, std::vector<double>>> grid;
+            for (const auto& v : o->vary)
+            {
+              const auto eq = v.find('=');
+              if (eq == std::string::npos || eq == 0)
+                throw InputError("--vary expects NAME=v1,v2,..., got '" + v + "'");
+              const std::string key = sweep_key(v.substr(0, eq));
+              std::vector<double> values;
+              std::stringstream ss(v.substr(eq + 1));
+              std::string item;
+              while (std::getline(ss, item, ','))
+              {
+                Config probe = c;
+                probe.set_text(key, item); // parses and type-checks the value
+                values.push_back(probe.number(key));
+              }
+              grid.emplace_back(key, values);
+            }
+            const std::string out = o->out.empty() ? "results/" + c.text("case.name") + "-sweep" : o->out;
+            auto rows = sweep(c, grid, out, MPI_COMM_WORLD);
+            if (log::is_root())
+              std::cout << sweep_table(rows) << "results written to " << out << "/ (sweep.json, sweep.csv)\n";
+            return 0;
+          }};
+}
+} // namespace breastsim::cli

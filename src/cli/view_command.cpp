@@ -1,0 +1,45 @@
+// `breastsim view RESULT_DIR`: (re)render the pictures of a result folder and
+// write its self-contained 3D page index.html.
+#include "../log.hpp"
+#include "../viewer.hpp"
+#include "command.hpp"
+#include <iostream>
+#include <memory>
+
+namespace breastsim::cli
+{
+Command add_view_command(CLI::App& root)
+{
+  struct Options
+  {
+    std::string result_dir, compare, size = "800x600";
+  };
+  auto o = std::make_shared<Options>();
+  auto* app = root.add_subcommand(
+      "view", "pictures (PNG) and a 3D page (index.html, opens offline in a browser) of a result");
+  app->add_option("result_dir", o->result_dir, "result folder of `breastsim simulate`")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  app->add_option("--compare", o->compare,
+                  "second result folder (e.g. pre vs post-operative): compare_<posture>.png and "
+                  "a pre/post toggle in the page")
+      ->check(CLI::ExistingDirectory);
+  app->add_option("--size", o->size, "picture size WIDTHxHEIGHT in pixels")
+      ->capture_default_str();
+  return {app, [o]()
+          {
+            check_picture_tools(MPI_COMM_WORLD);
+            render_pictures(o->result_dir, {o->compare, o->size}, MPI_COMM_WORLD);
+            write_view_page(o->result_dir, o->compare, MPI_COMM_WORLD);
+            if (log::is_root())
+            {
+              const auto page = std::filesystem::absolute(o->result_dir) / "index.html";
+              std::cout << "pictures written to " << o->result_dir
+                        << "/ (view_<posture>.png, overview.png"
+                        << (o->compare.empty() ? "" : ", compare_<posture>.png") << ")\n"
+                        << "3D page: file://" << page.lexically_normal().string() << "\n";
+            }
+            return 0;
+          }};
+}
+} // namespace breastsim::cli

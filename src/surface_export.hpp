@@ -1,0 +1,34 @@
+#pragma once
+// The skin of a model as a triangle surface for pictures and the 3D page:
+// reference (neutral) and deformed vertex positions of the half breast
+// (x >= 0), gathered to rank 0. P2 meshes contribute their corner nodes.
+#include "model.hpp"
+#include <array>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace breastsim
+{
+struct SkinSurface
+{
+  std::vector<std::array<double, 3>> reference; ///< neutral positions [m]
+  std::vector<std::array<double, 3>> deformed;  ///< reference + displacement [m]
+  std::vector<std::array<std::int32_t, 3>> triangles; ///< counter-clockwise seen from outside
+};
+
+/// Collective. The skin surface of the current state of `model`; complete on
+/// rank 0, empty on the other ranks.
+SkinSurface gather_skin_surface(const Model& model);
+
+/// The surface document (`surface_<posture>.json`): posture, theta_deg,
+/// units, vertices_ref, vertices, triangles (flat lists) and
+/// fields.displacement_mm (per vertex).
+nlohmann::json surface_json(const SkinSurface& s, const std::string& posture, double theta_deg);
+
+/// Collective. Gather the skin of `model` and write its surface document to
+/// `file` (rank 0).
+void write_surface(const Model& model, const std::string& posture, double theta_deg,
+                   const std::filesystem::path& file);
+} // namespace breastsim

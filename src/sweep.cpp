@@ -1,0 +1,156 @@
+#include "sweep.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "output.hpp"
+#include <chrono>
+#include <fmt/format.h>
+
+namespace breastsim
+{
+std::string sweep_key(const std::string& name)
+{
+  static const std::map<std::string, std::string> keys
+      = {{"a", "incision.a_deg"}, {"s", "incision.s"}, {"h", "incision.h"}, {"d", "incision.d"}};
+  if (auto it = keys.find(name); it != keys.end())
+    return it->second;
+  key_info(name); // any other case key is allowed if it exists (throws otherwise)
+  return name;
+}
+
+namespace
+{
+SweepRow run_one(Config c, const std::map<std::string, double>& values, const std::filesystem::path& dir,
+                 MPI_Comm comm)
+{
+  SweepRow row;
+  row.parameters = values;
+  const auto t0 = std::chrono::steady_clock::now();
+  try
+  {
+    for (const auto& [k, v] : values)
+      c.set(k, v);
+    c.validate();
+    auto r = surgery(c, dir, comm);
+    auto it = std::find_if(r.post.begin(), r.post.end(),
+                           [](const PostureResult& p) { return p.posture.theta_deg == 0.0; });
+    if (it == r.post.end())
+      throw InputError("the sweep needs the standing posture in postures.names");
+    const auto& o = it->observables;
+    row.ok = true;
+    row.resected_volume = r.resected_volume;
+    row.nipple = o.nipple;
+    row.projection = o.projection;
+    row.z_min = o.z_min;
+    row.lower_pole_ratio = (o.nipple[2] - o.z_min) / (o.z_max - o.z_min);
+    row.max_gap = r.suture.max_gap;
+    row.newton_iterations = r.suture.closure.newton_iterations;
+    for (const auto& p : r.post)
+      row.newton_iterations += p.path.newton_iterations;
+  }
+  catch (const InputError& e)
+  {
+    row.error = e.what();
+  }
+  catch (const SolveError& e)
+  {
+    row.error = e.what();
+  }
+  row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return row;
+}
+
+nlohmann::json to_json(const SweepRow& r)
+{
+  nlohmann::json j = {{"parameters", r.parameters}, {"ok", r.ok}, {"wall_time_s", r.seconds}};
+  if (!r.ok)
+  {
+    j["error"] = r.error;
+    return j;
+  }
+  j.update({{"resected_volume_m3", r.resected_volume}, {"nipple_standing_m", r.nipple},
+            {"projection_standing_m", r.projection}, {"z_min_standing_m", r.z_min},
+            {"lower_pole_ratio", r.lower_pole_ratio}, {"max_suture_gap_m", r.max_gap},
+            {"newton_iterations", r.newton_iterations}});
+  return j;
+}
+} // namespace
+
+std::vector<SweepRow> sweep(const Config& base,
+                            const std::vector<std::pair<std::string, std::vector<double>>>& grid,
+                            const std::filesystem::path& out, MPI_Comm comm)
+{
+  if (grid.empty())
+    throw InputError("sweep: give at least one --vary name=v1,v2,...");
+  for (const auto& [k, vs] : grid)
+    if (vs.empty())
+      throw InputError(fmt::format("sweep: --vary {} has no values", k));
+  OutputDir dir(out, comm);
+  std::vector<SweepRow> rows;
+  std::vector<std::size_t> idx(grid.size(), 0);
+  while (true)
+  {
+    std::map<std::string, double> values;
+    std::string label;
+    for (std::size_t i = 0; i < grid.size(); ++i)
+    {
+      values[grid[i].first] = grid[i].second[idx[i]];
+      label += fmt::format("{}{}={:g}", label.empty() ? "" : "_", grid[i].first, grid[i].second[idx[i]]);
+    }
+    log::info("sweep: {}", label);
+    rows.push_back(run_one(base, values, dir.path() / label, comm));
+    std::size_t i = 0;
+    while (i < grid.size() && ++idx[i] == grid[i].second.size())
+      idx[i++] = 0;
+    if (i == grid.size())
+      break;
+  }
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& r : rows)
+    j.push_back(to_json(r));
+  write_json(dir.path() / "sweep.json", j, comm);
+  std::string csv;
+  for (const auto& [k, v] : rows.front().parameters)
+    csv += k + ",";
+  csv += "ok,resected_volume_cm3,nipple_y_mm,nipple_z_mm,projection_mm,z_min_mm,lower_pole_ratio,"
+         "max_gap_mm,newton_iterations,wall_time_s\n";
+  for (const auto& r : rows)
+  {
+    for (const auto& [k, v] : r.parameters)
+      csv += fmt::format("{:g},", v);
+    csv += fmt::format("{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.5f},{},{:.2f}\n", r.ok ? 1 : 0,
+                       1e6 * r.resected_volume, 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.projection,
+                       1e3 * r.z_min, r.lower_pole_ratio, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
+  }
+  write_text(dir.path() / "sweep.csv", csv, comm);
+  write_text(dir.path() / "sweep.txt", sweep_table(rows), comm);
+  dir.commit();
+  return rows;
+}
+
+std::string sweep_table(const std::vector<SweepRow>& rows)
+{
+  std::string s;
+  for (const auto& [k, v] : rows.front().parameters)
+    s += fmt::format("{:>16} ", k);
+  s += fmt::format("{:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>7} {:>7}\n", "resect", "nipple y",
+                   "nipple z", "proj", "z_min", "lower/H", "gap", "newton", "time");
+  for (const auto& [k, v] : rows.front().parameters)
+    s += fmt::format("{:>16} ", "");
+  s += fmt::format("{:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>7} {:>7}\n", "[cm3]", "[mm]", "[mm]",
+                   "[mm]", "[mm]", "", "[mm]", "", "[s]");
+  for (const auto& r : rows)
+  {
+    for (const auto& [k, v] : r.parameters)
+      s += fmt::format("{:>16g} ", v);
+    if (!r.ok)
+    {
+      s += "rejected: " + r.error + "\n";
+      continue;
+    }
+    s += fmt::format("{:>9.1f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>10.3f} {:>9.4f} {:>7d} {:>7.1f}\n",
+                     1e6 * r.resected_volume, 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.projection,
+                     1e3 * r.z_min, r.lower_pole_ratio, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
+  }
+  return s;
+}
+} // namespace breastsim

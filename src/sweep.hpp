@@ -1,0 +1,35 @@
+#pragma once
+// Incision sweeps: the surgery on a grid of incision parameters, reduced to
+// one table row per combination.
+#include "surgery.hpp"
+#include <map>
+
+namespace breastsim
+{
+struct SweepRow
+{
+  std::map<std::string, double> parameters; ///< case key -> value
+  bool ok = false;
+  std::string error;                        ///< why the combination was rejected
+  double resected_volume = 0;               ///< full breast [m^3]
+  std::array<double, 3> nipple{};           ///< post-op standing nipple [m]
+  double projection = 0, z_min = 0;         ///< post-op standing [m]
+  /// Lower-pole share of the standing breast height, (z_nipple - z_min) /
+  /// (z_max - z_min): the aesthetic ideal is about 0.55 (upper:lower 45:55);
+  /// a larger value is a bottomed-out, overfull lower pole.
+  double lower_pole_ratio = 0;
+  double max_gap = 0;
+  int newton_iterations = 0;
+  double seconds = 0;
+};
+
+/// Short names accepted by --vary (a, s, h, d) -> case keys.
+std::string sweep_key(const std::string& name);
+
+/// Run the surgery for every combination of `grid` (case key -> values),
+/// postures as in the case (standing must be among them). Each run writes
+/// into <out>/<label>/; the table into <out>/sweep.json and sweep.csv.
+std::vector<SweepRow> sweep(const Config& base, const std::vector<std::pair<std::string, std::vector<double>>>& grid,
+                            const std::filesystem::path& out, MPI_Comm comm);
+std::string sweep_table(const std::vector<SweepRow>& rows);
+} // namespace breastsim

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# `breastsim measure` + `breastsim calibrate` end to end on a coarse mesh:
+# the calibrated case must be accepted by `breastsim simulate` unchanged;
+# bad measurement files and unidentifiable requests exit with code 2 and
+# leave no output folder.
+set -u
+BIN="$1"
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+fails=0
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+
+printf '[geometry]\nmesh_size = 0.016\n[tissue]\nmu = 300.0\n' > start.toml
+printf '[geometry]\nmesh_size = 0.016\n' > truth.toml
+"$BIN" -q measure truth.toml --mesh-size 0.012 --noise 0.0005 --seed 3 --out m.json || fail "measure"
+"$BIN" -q calibrate m.json --case start.toml --fit mu --max-evals 30 --out fit >calib.out 2>calib.err \
+  || { fail "calibrate"; cat calib.err; }
+[ -f fit/calibrated.toml ] && [ -f fit/report.json ] || fail "calibrate outputs missing"
+[ -f fit.checkpoint.json ] || fail "no checkpoint written"
+grep -q "mu " calib.out || fail "no result table"
+"$BIN" -q simulate fit/calibrated.toml --out sim >sim.out 2>sim.err || { fail "simulate of calibrated.toml"; cat sim.err; }
+echo "ok   calibrate -> simulate: $(grep '^mu' calib.out)"
+
+expect_error() { # name, message fragment, measurement JSON, calibrate args...
+  local name="$1" frag="$2" json="$3"; shift 3
+  printf '%s' "$json" > "$name.json"
+  "$BIN" -q calibrate "$name.json" --out "out_$name" "$@" >/dev/null 2>"$name.err"
+  local code=$?
+  [ "$code" -eq 2 ] || { fail "$name: exit code $code (expected 2)"; cat "$name.err"; return; }
+  grep -qF -- "$frag" "$name.err" || { fail "$name: message lacks '$frag'"; cat "$name.err"; return; }
+  ! ls -d out_"$name"* >/dev/null 2>&1 || { fail "$name: output left behind"; return; }
+  echo "ok   $name: $(head -c 160 "$name.err")"
+}
+ok='{"units": "SI", "postures": [{"name": "standing", "projection": 0.06}]}'
+expect_error units "'units' = \"mm\"" '{"units": "mm", "postures": [{"name": "standing", "projection": 0.06}]}'
+expect_error no_postures "'postures' is missing" '{"units": "SI", "base_perimeter": 0.43}'
+expect_error negative "'base_perimeter' = -0.43" '{"units": "SI", "base_perimeter": -0.43, "postures": [{"name": "supine", "projection": 0.05}]}'
+expect_error nan "not valid JSON" '{"units": "SI", "postures": [{"name": "standing", "projection": NaN}]}'
+expect_error rho_mu "only mu/rho is identifiable" "$ok" --fit rho,mu
+expect_error algorithm "--algorithm 'newton' is unknown" "$ok" --algorithm newton
+expect_error resume "checkpoint" "$ok" --resume --checkpoint "$work/none.json"
+
+[ "$fails" -eq 0 ] && echo "all calibrate CLI checks passed" || { echo "$fails failures"; exit 1; }
