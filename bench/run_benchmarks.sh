@@ -13,18 +13,20 @@ BUILD=${1:-build}; REPEATS=${2:-3}; FILTER=${3:-.}
 BIN="$BUILD/breastsim"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-out=bench/results.jsonl; : > "$out"
+out=bench/results.jsonl
+[ "${APPEND:-0}" = 1 ] || : > "$out"   # APPEND=1 adds to an earlier run
 
 # mesh_size giving ~5k / ~50k / ~200k tetrahedra for the default cap.
-declare -A H=( [5k]=0.0075 [50k]=0.0035 [200k]=0.0022 )
+declare -A H=( [5k]=0.0075 [50k]=0.003 [200k]=0.0019 )
 for size in 5k 50k 200k; do
   for order in 1 2; do
     for linear in direct amg; do
       for ranks in 1 2; do
         label="${size}_P${order}_${linear}_np${ranks}"
         [[ "$label" =~ $FILTER ]] || continue
-        # MUMPS on the largest P2 meshes exceeds the time budget of a benchmark run.
-        if [ "$linear" = direct ] && [ "$order" = 2 ] && [ "$size" = 200k ]; then continue; fi
+        # MUMPS on P2 beyond ~20k unknowns needs minutes per factorisation
+        # (11 s at 19k unknowns here): only AMG is run for the larger P2 meshes.
+        if [ "$linear" = direct ] && [ "$order" = 2 ] && [ "$size" != 5k ]; then continue; fi
         for rep in $(seq "$REPEATS"); do
           cmd=("$BIN" -q simulate cases/default.toml --set postures.names=standing
                --set geometry.mesh_size=${H[$size]} --set geometry.order=$order

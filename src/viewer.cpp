@@ -89,8 +89,8 @@ void render_pictures(const std::filesystem::path& result_dir, const PictureOptio
     argv.insert(argv.end(), {"--compare", o.compare.string()});
   log::info("rendering pictures ({} px)", o.size);
   const int code = run_on_root(argv, comm);
-  if (code == 3)
-    check_picture_tools(comm); // throws with the installation hint
+  if (code == 3 || code < 0)
+    check_picture_tools(comm); // python3 or matplotlib missing: throws with the installation hint
   check_code(code, "rendering the pictures of " + result_dir.string());
 }
 
