@@ -27,14 +27,20 @@ int tag(const std::string& name)
 }
 } // namespace
 
+meshes::HalfCapSpec cap_spec(const Config& c)
+{
+  meshes::HalfCapSpec s;
+  s.R = c.number("geometry.R");
+  s.H = c.number("geometry.H");
+  s.mesh_size = c.number("geometry.mesh_size");
+  s.order = static_cast<int>(c.integer("geometry.order"));
+  s.refinements = static_cast<int>(c.integer("geometry.refinements"));
+  return s;
+}
+
 TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm)
 {
-  meshes::HalfCapSpec spec;
-  spec.R = c.number("geometry.R");
-  spec.H = c.number("geometry.H");
-  spec.mesh_size = c.number("geometry.mesh_size");
-  spec.order = static_cast<int>(c.integer("geometry.order"));
-  spec.refinements = static_cast<int>(c.integer("geometry.refinements"));
+  const meshes::HalfCapSpec spec = cap_spec(c);
   int rank;
   MPI_Comm_rank(comm, &rank);
   meshes::TaggedMesh m;

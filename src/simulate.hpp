@@ -1,6 +1,7 @@
 #pragma once
 // The forward simulation: mesh the neutral half breast, bind the case's
 // parameters, and solve each posture from the neutral state.
+#include "../meshes/half_cap.hpp"
 #include "config.hpp"
 #include "load_stepping.hpp"
 #include "mesh_quality.hpp"
@@ -28,6 +29,8 @@ struct SimulationResult
   std::vector<PostureResult> postures;
 };
 
+/// The half-cap geometry and mesh settings of the case.
+meshes::HalfCapSpec cap_spec(const Config& c);
 /// Mesh the neutral half cap of the case (collective; gmsh runs on rank 0).
 TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm);
 /// Bind every physics key of the case and the term switches into the model.

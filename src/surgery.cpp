@@ -4,6 +4,7 @@
 #include "log.hpp"
 #include "output.hpp"
 #include "reference_reset.hpp"
+#include "viewer.hpp"
 #include <chrono>
 #include <fmt/format.h>
 
@@ -28,17 +29,6 @@ std::array<int, 5> suture_tags()
   return t;
 }
 } // namespace
-
-meshes::HalfCapSpec cap_spec(const Config& c)
-{
-  meshes::HalfCapSpec s;
-  s.R = c.number("geometry.R");
-  s.H = c.number("geometry.H");
-  s.mesh_size = c.number("geometry.mesh_size");
-  s.order = static_cast<int>(c.integer("geometry.order"));
-  s.refinements = static_cast<int>(c.integer("geometry.refinements"));
-  return s;
-}
 
 meshes::IncisionSpec incision_spec(const Config& c)
 {
@@ -100,6 +90,7 @@ SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Com
   const auto cap = cap_spec(c);
   const auto inc = incision_spec(c);
   r.incision = meshes::incision_geometry(cap, inc); // rejects bad parameters before any work
+  check_picture_tools(comm);
   int rank;
   MPI_Comm_rank(comm, &rank);
 
@@ -154,6 +145,10 @@ SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Com
 
   write_json(dir.path() / "summary.json", to_json(r), comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
+  // Pictures: each stage's postures, post-op against pre-op, and the 3D page.
+  render_pictures(dir.path() / "preop", {}, comm);
+  render_pictures(dir.path() / "postop", {dir.path() / "preop"}, comm);
+  write_view_page(dir.path() / "postop", dir.path() / "preop", comm);
   dir.commit();
   return r;
 }

@@ -31,7 +31,6 @@ struct SurgeryResult
 };
 
 meshes::IncisionSpec incision_spec(const Config& c);
-meshes::HalfCapSpec cap_spec(const Config& c);
 
 /// Close the incision of a model whose mesh has the suture tags: closure
 /// stepping without gravity, then the penalty is raised x10 until the

@@ -237,3 +237,20 @@ TEST(CalibrateCheckpoint, RoundTripAndMismatch)
   std::filesystem::remove(f);
   EXPECT_THROW(read_checkpoint(f, fit), InputError);
 }
+
+TEST(CalibrateOutput, CalibratedCaseRoundTripsThroughToml)
+{
+  // calibrated.toml is Config::to_toml of the case: every key, each TOML
+  // table once (base.fixed and base.c live in the same [base] table).
+  Config c;
+  c.set("base.c", 123456.789);
+  c.set("tissue.mu", 321.5);
+  c.set("base.fixed", true);
+  const auto f = temp_file("breastsim_test_calibrated.toml", c.to_toml());
+  const Config back = Config::from_file(f);
+  EXPECT_EQ(back.number("base.c"), 123456.789);
+  EXPECT_EQ(back.number("tissue.mu"), 321.5);
+  EXPECT_TRUE(back.flag("base.fixed"));
+  EXPECT_EQ(back.to_json(), c.to_json());
+  std::filesystem::remove(f);
+}

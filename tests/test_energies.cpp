@@ -7,8 +7,8 @@ using namespace breastsim;
 
 namespace
 {
-/// u = (F0 - I) X
-void set_homogeneous(Model& m, const std::array<double, 9>& F0)
+/// u = (F0 - I) X + a
+void set_homogeneous(Model& m, const std::array<double, 9>& F0, const std::array<double, 3>& a = {})
 {
   m.displacement()->interpolate(
       [&](auto&& x)
@@ -16,8 +16,11 @@ void set_homogeneous(Model& m, const std::array<double, 9>& F0)
         xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
         for (std::size_t p = 0; p < x.shape(1); ++p)
           for (int i = 0; i < 3; ++i)
+          {
+            v(i, p) = a[i];
             for (int j = 0; j < 3; ++j)
               v(i, p) += (F0[3 * i + j] - (i == j)) * x(j, p);
+          }
         return v;
       });
 }
@@ -62,15 +65,7 @@ TEST_P(Energies, GravityPotential)
 {
   // u = a (constant): E = -rho g.a V.
   const std::array<double, 3> a = {0.0, 0.004, -0.01}, g = {0.0, -3.0, -9.0};
-  m->displacement()->interpolate(
-      [&](auto&& x)
-      {
-        xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
-        for (std::size_t p = 0; p < x.shape(1); ++p)
-          for (int i = 0; i < 3; ++i)
-            v(i, p) = a[i];
-        return v;
-      });
+  set_homogeneous(*m, {1, 0, 0, 0, 1, 0, 0, 0, 1}, a);
   m->set_parameter("rho", {1000.0});
   m->set_parameter("g_vec", {g[0], g[1], g[2]});
   m->set_parameter("load", {0.5});
@@ -133,15 +128,7 @@ TEST_P(Energies, BaseSprings)
   // u = a on the base: E = c/2 |a|^2 int (1 + (k - 1) max(0, -Z)/R) dA and
   // int_{half disc, Z < 0} (-Z) dA = R^3 / 3.
   const std::array<double, 3> a = {0.001, -0.002, 0.003};
-  m->displacement()->interpolate(
-      [&](auto&& x)
-      {
-        xt::xarray<double> v = xt::zeros<double>({std::size_t(3), x.shape(1)});
-        for (std::size_t p = 0; p < x.shape(1); ++p)
-          for (int i = 0; i < 3; ++i)
-            v(i, p) = a[i];
-        return v;
-      });
+  set_homogeneous(*m, {1, 0, 0, 0, 1, 0, 0, 0, 1}, a);
   const double c0 = 3e5, k = 4.0, R = c.number("geometry.R");
   const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   m->set_parameter("c", {c0});

@@ -14,6 +14,22 @@
 
 namespace breastsim::cli
 {
+namespace
+{
+/// The built-in defaults with "key=value" overrides (load_case needs a file).
+Config with_overrides(Config c, const std::vector<std::string>& sets)
+{
+  for (const auto& s : sets)
+  {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set expects key=value, got '" + s + "'");
+    c.set_text(s.substr(0, eq), s.substr(eq + 1));
+  }
+  return c;
+}
+} // namespace
+
 Command add_calibrate_command(CLI::App& root)
 {
   struct Options
@@ -50,17 +66,9 @@ Command add_calibrate_command(CLI::App& root)
   app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
   return {app, [o]()
           {
-            Config c = o->case_file.empty() ? Config() : load_case(o->case_file, {});
+            Config c = o->case_file.empty() ? Config() : load_case(o->case_file, o->sets);
             if (o->case_file.empty())
-              for (const auto& s : o->sets) // same syntax as load_case
-              {
-                const auto eq = s.find('=');
-                if (eq == std::string::npos || eq == 0)
-                  throw InputError("--set expects key=value, got '" + s + "'");
-                c.set_text(s.substr(0, eq), s.substr(eq + 1));
-              }
-            else
-              c = load_case(o->case_file, o->sets);
+              c = with_overrides(c, o->sets);
             c.validate();
             insert_petsc_options(c, o->petsc_options);
             if (o->max_evals < 1)
