@@ -197,8 +197,10 @@ double Model::area(const std::string& tag)
 
 double Model::min_detF()
 {
-  auto expr = fem::create_expression<T>(*generated::detF_expression(_mesh.degree),
-                                        {{"u", _u}}, {}, _mesh.mesh);
+  if (!_detF)
+    _detF = std::make_shared<fem::Expression<T>>(fem::create_expression<T>(
+        *generated::detF_expression(_mesh.degree), {{"u", _u}}, {}, _mesh.mesh));
+  const fem::Expression<T>& expr = *_detF;
   const std::int32_t ncells = _mesh.mesh->topology().index_map(3)->size_local();
   std::vector<std::int32_t> cells(ncells);
   std::iota(cells.begin(), cells.end(), 0);

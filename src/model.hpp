@@ -5,6 +5,7 @@
 // names a specific material: parameters and terms come from forms/.
 #include "mesh_from_gmsh.hpp"
 #include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
@@ -97,6 +98,7 @@ private:
   std::map<std::string, std::shared_ptr<dolfinx::fem::Constant<T>>> _constants;
   std::map<std::string, FormSet> _forms; // "" = total
   std::shared_ptr<dolfinx::fem::Form<T>> _volume;
+  std::shared_ptr<dolfinx::fem::Expression<T>> _detF; // det F at the element nodes
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> _bcs;
 };
 } // namespace breastsim

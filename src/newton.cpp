@@ -79,8 +79,10 @@ void NewtonSolver::setup_ksp()
   KSPSetFromOptions(_ksp); // --petsc-options override the defaults above
 }
 
-int NewtonSolver::linear_solve(std::string& msg)
+int NewtonSolver::linear_solve(std::string& msg, bool* indefinite)
 {
+  if (indefinite)
+    *indefinite = false;
   for (int attempt = 0; attempt < 2; ++attempt)
   {
     const bool fresh = _stale || !_opt.reuse_preconditioner || attempt == 1;
@@ -104,6 +106,8 @@ int NewtonSolver::linear_solve(std::string& msg)
       return static_cast<int>(its);
     }
     msg = fmt::format("linear solver failed ({}, {} iterations)", KSPConvergedReasons[reason], its);
+    if (indefinite)
+      *indefinite = reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC;
     if (fresh)
       return -1;
   }
@@ -144,20 +148,26 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     auto t1 = std::chrono::steady_clock::now();
     KSPSetOperators(_ksp, _A, _A);
     VecScale(_r, -1.0);
-    int kits = linear_solve(rep.message);
+    bool indefinite = false;
+    int kits = linear_solve(rep.message, &indefinite);
     auto t2 = std::chrono::steady_clock::now();
-    if (kits < 0)
-      break;
-    rep.linear_iterations += kits;
-    PetscScalar slope; // dPi/dalpha at alpha = 0: r . du (r is negated)
-    VecDot(_r, _du, &slope);
-    slope = -slope;
-    // Indefinite tangent (e.g. a compressed region far from equilibrium):
-    // shift the diagonal, A_ii += sigma |A_ii|, until the direction descends
-    // (a Levenberg-Marquardt style regularisation; exact Newton near the
-    // solution where the tangent is positive definite).
+    PetscScalar slope = 0; // dPi/dalpha at alpha = 0: r . du (r is negated)
+    auto descent = [&]()
+    {
+      if (kits < 0)
+        return false;
+      rep.linear_iterations += kits;
+      VecDot(_r, _du, &slope);
+      slope = -slope;
+      return slope < 0;
+    };
+    bool ok = descent();
+    // Indefinite tangent (a compressed region far from equilibrium; CG
+    // reports it, LU gives a non-descent direction): shift the diagonal,
+    // A_ii += sigma |A_ii|, until the direction descends (Levenberg-Marquardt
+    // style; exact Newton near the solution, where the tangent is definite).
     bool shifted = false;
-    for (double sigma = 1e-2; !(slope < 0) && sigma <= 1e2 && kits >= 0; sigma *= 10)
+    for (double sigma = 1e-2; !ok && (kits >= 0 || indefinite) && sigma <= 1e2; sigma *= 10)
     {
       shifted = true;
       Vec d;
@@ -169,16 +179,15 @@ NewtonReport NewtonSolver::solve(double reference_norm)
       VecDestroy(&d);
       _stale = true; // factor the shifted matrix
       KSPSetOperators(_ksp, _A, _A);
-      kits = linear_solve(rep.message);
-      if (kits < 0)
-        break;
-      rep.linear_iterations += kits;
-      VecDot(_r, _du, &slope);
-      slope = -slope;
-      log::debug("  newton: indefinite tangent, diagonal shift {:.0e}: slope {:.3e}", sigma, slope);
+      kits = linear_solve(rep.message, &indefinite);
+      ok = descent();
+      log::debug("  newton: indefinite tangent, diagonal shift {:.0e}: {}", sigma,
+                 ok ? "descent direction" : "not yet");
     }
+    if (kits < 0)
+      break;
     _stale = _stale || shifted; // never reuse the factors of a shifted matrix
-    if (!(slope < 0))
+    if (!ok)
     {
       rep.message = "the Newton direction is not a descent direction (indefinite tangent)";
       break;

@@ -61,7 +61,7 @@ private:
   void setup_ksp();
   /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
   /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
-  int linear_solve(std::string& msg);
+  int linear_solve(std::string& msg, bool* indefinite = nullptr);
   Model& _model;
   NewtonOptions _opt;
   std::string _linear;
