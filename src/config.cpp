@@ -70,7 +70,7 @@ std::vector<KeyInfo> build_schema()
               "keep the LU factors / AMG hierarchy of an earlier Jacobian while Krylov "
               "iterations stay few (rebuilt automatically)"),
       integer("solver.max_iterations", 25, 1, 1000, "Newton iterations per load step"),
-      num("solver.initial_load_step", "1", 1.0, 0.0, 1.0,
+      num("solver.initial_load_step", "1", 0.5, 0.0, 1.0,
           "first load increment (fraction of the full load)", true),
       num("solver.min_load_step", "1", 1.0 / 1024, 0.0, 1.0,
           "smallest load increment before giving up", true),
