@@ -20,4 +20,5 @@ Command add_measure_command(CLI::App& root);
 Command add_view_command(CLI::App& root);
 Command add_surgery_command(CLI::App& root);
 Command add_sweep_command(CLI::App& root);
+Command add_converge_command(CLI::App& root); // issue 5 (converge_command.cpp)
 } // namespace breastsim::cli

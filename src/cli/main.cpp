@@ -24,6 +24,7 @@ int main(int argc, char** argv)
       cli::add_view_command(app),
       cli::add_surgery_command(app),
       cli::add_sweep_command(app),
+      cli::add_converge_command(app),
   };
 
   try

@@ -1,0 +1,117 @@
+// `breastsim converge CASE.toml --levels N [--order 1,2] [--quantity ...] [--mms]`:
+// mesh-convergence study of the case's standing posture (observed order,
+// Richardson extrapolation, GCI of the finest level) or, with --mms, the
+// manufactured-solution verification (L2/H1 error orders). docs/CONVERGENCE.md.
+#include "../config.hpp"
+#include "../convergence.hpp"
+#include "../errors.hpp"
+#include "../log.hpp"
+#include "../mms.hpp"
+#include "../output.hpp"
+#include "command.hpp"
+#include "overrides.hpp"
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace breastsim::cli
+{
+namespace
+{
+std::vector<std::string> split(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty())
+      out.push_back(item);
+  return out;
+}
+} // namespace
+
+Command add_converge_command(CLI::App& root)
+{
+  struct Options
+  {
+    std::string case_file, out, orders = "1", quantities = "nipple_z,projection,energy";
+    std::vector<std::string> sets;
+    int levels = 3;
+    bool mms = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto* app = root.add_subcommand(
+      "converge", "mesh-convergence study: observed order, Richardson value and GCI per quantity "
+                  "(or the MMS verification with --mms)");
+  app->add_option("case", o->case_file, "case file (TOML, SI units; see `breastsim keys`)")->required();
+  app->add_option("--levels", o->levels, "number of meshes: geometry.refinements = 0 .. N-1 (3..5)")
+      ->check(CLI::Range(3, 5));
+  app->add_option("--order", o->orders, "element orders, comma separated (1, 2)");
+  app->add_option("--quantity", o->quantities,
+                  "quantities, comma separated: nipple_x, nipple_y, nipple_z, projection, z_min, "
+                  "z_max, base_perimeter, volume, energy");
+  app->add_option("--set", o->sets, "override a case key (repeatable)")->allow_extra_args(false);
+  app->add_option("--out", o->out,
+                  "output folder (default results/<case.name>-convergence); replaced on success");
+  app->add_flag("--mms", o->mms,
+                "manufactured-solution problem instead of the case's posture (the case's "
+                "material, geometry and mesh_size; gravity off)");
+  return {app, [o]()
+          {
+            Config c = load_case(o->case_file, o->sets);
+            std::vector<int> orders;
+            for (const auto& s : split(o->orders))
+            {
+              try
+              {
+                orders.push_back(std::stoi(s));
+              }
+              catch (const std::exception&)
+              {
+                throw InputError("--order: not an integer: '" + s + "'");
+              }
+              if (orders.back() != 1 && orders.back() != 2)
+                throw InputError("--order: element order must be 1 or 2, got " + s);
+            }
+            const std::string out =
+                o->out.empty() ? "results/" + c.text("case.name") + "-convergence" : o->out;
+            nlohmann::json j;
+            j["case"] = c.text("case.name");
+            j["levels"] = o->levels;
+            std::string report;
+            if (o->mms)
+            {
+              for (int p : orders)
+              {
+                auto s = mms_study(c, p, c.number("geometry.mesh_size"), o->levels, MPI_COMM_WORLD);
+                j["mms"].push_back(to_json(s));
+                report += mms_table(s);
+              }
+            }
+            else
+            {
+              auto studies = converge_case(c, o->levels, orders, split(o->quantities), MPI_COMM_WORLD);
+              for (const auto& s : studies)
+              {
+                j["studies"].push_back(to_json(s));
+                report += convergence_table(s);
+              }
+            }
+            OutputDir dir(out, MPI_COMM_WORLD);
+            write_json(dir.path() / "convergence.json", j, MPI_COMM_WORLD);
+            write_text(dir.path() / "convergence.txt", report, MPI_COMM_WORLD);
+            bool png = false;
+            if (log::is_root())
+              png = plot_convergence(dir.path() / "convergence.json", dir.path() / "convergence.png");
+            dir.commit();
+            if (log::is_root())
+            {
+              std::cout << report;
+              std::cout << "results written to " << out << "/ (convergence.json, convergence.txt"
+                        << (png ? ", convergence.png" : "; no plot: python3/matplotlib failed")
+                        << ")\n";
+            }
+            return 0;
+          }};
+}
+} // namespace breastsim::cli

@@ -1,0 +1,332 @@
+#include "mms.hpp"
+#include "../meshes/half_cap.hpp"
+#include "breastsim_registry.hpp"
+#include "errors.hpp"
+#include "mesh_from_gmsh.hpp"
+#include "mesh_quality.hpp"
+#include "mms_p1.h"
+#include "mms_p2.h"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/petsc.h>
+#include <dolfinx/mesh/utils.h>
+#include <fmt/format.h>
+#include <numeric>
+#include <petscksp.h>
+#include <spdlog/spdlog.h>
+
+namespace breastsim
+{
+using namespace dolfinx;
+using T = PetscScalar;
+
+namespace
+{
+struct MmsForms
+{
+  ufcx_form *residual, *jacobian, *error_l2, *error_h1, *norm_l2, *norm_h1;
+  ufcx_function_space* (*space)(const char*);
+  ufcx_expression* u_ex;
+  ufcx_form *patch_residual, *patch_error_l2, *patch_error_h1;
+};
+
+MmsForms mms_forms(int order)
+{
+  if (order == 1)
+    return {form_mms_p1_mms_residual, form_mms_p1_mms_jacobian, form_mms_p1_mms_error_l2,
+            form_mms_p1_mms_error_h1, form_mms_p1_mms_norm_l2,  form_mms_p1_mms_norm_h1,
+            functionspace_form_mms_p1_mms_residual, expression_mms_p1_u_ex,
+            form_mms_p1_patch_residual, form_mms_p1_patch_error_l2, form_mms_p1_patch_error_h1};
+  if (order == 2)
+    return {form_mms_p2_mms_residual, form_mms_p2_mms_jacobian, form_mms_p2_mms_error_l2,
+            form_mms_p2_mms_error_h1, form_mms_p2_mms_norm_l2,  form_mms_p2_mms_norm_h1,
+            functionspace_form_mms_p2_mms_residual, expression_mms_p2_u_ex,
+            form_mms_p2_patch_residual, form_mms_p2_patch_error_l2, form_mms_p2_patch_error_h1};
+  throw InputError(fmt::format("MMS: element order {} is not compiled in (1, 2)", order));
+}
+
+int tag_value(const std::string& name)
+{
+  for (const auto& t : generated::tags())
+    if (t.name == name)
+      return t.value;
+  throw std::logic_error("unknown boundary tag " + name);
+}
+
+double sum_all(double local, MPI_Comm comm)
+{
+  double global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+} // namespace
+
+MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
+                   bool patch)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const MmsForms uf = mms_forms(order);
+
+  // Mesh: the case's half cap at the requested size and refinement.
+  meshes::HalfCapSpec spec;
+  spec.R = c.number("geometry.R");
+  spec.H = c.number("geometry.H");
+  spec.mesh_size = mesh_size;
+  spec.order = order;
+  spec.refinements = refinements;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh tm;
+  tm.order = order;
+  if (rank == 0)
+    tm = meshes::mesh_half_cap(spec, tag_value("base"), tag_value("skin"), tag_value("symmetry"));
+  TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
+
+  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
+  auto u = std::make_shared<fem::Function<T>>(V);
+
+  // Constants by name: registry defaults, then the case's physics keys.
+  std::map<std::string, std::shared_ptr<fem::Constant<T>>> constants;
+  for (const auto& p : generated::parameters())
+    constants[p.name] = std::make_shared<fem::Constant<T>>(std::span<const T>(p.default_value));
+  for (const auto& k : schema())
+  {
+    if (k.ufl_name.empty() || !constants.count(k.ufl_name))
+      continue;
+    if (k.type == KeyType::number)
+      constants[k.ufl_name]->value = {c.number(k.key)};
+    else
+      constants[k.ufl_name]->value = c.numbers(k.key);
+  }
+  for (const auto& t : generated::terms())
+    constants["on_" + t.name] = std::make_shared<fem::Constant<T>>(
+        (t.name == "tissue" || t.name == "skin" || t.name == "base_springs") ? 1.0 : 0.0);
+  // The plain membrane: the relaxed tension-field energy is only C1.
+  constants.at("skin_tension_only")->value = {0.0};
+
+  std::map<std::string, std::shared_ptr<const fem::Constant<T>>> cmap(constants.begin(),
+                                                                       constants.end());
+  auto create = [&](ufcx_form* f, int rank_)
+  {
+    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
+    return std::make_shared<fem::Form<T>>(fem::create_form<T>(
+        *f, spaces, {{"u", u}}, cmap, {{fem::IntegralType::exterior_facet, m.facets.get()}},
+        m.mesh));
+  };
+  auto R = create(patch ? uf.patch_residual : uf.residual, 1), Jf = create(uf.jacobian, 2);
+
+  // Sliding symmetry u_x = 0 on x = 0 (u_ex satisfies it).
+  std::vector<std::shared_ptr<const fem::DirichletBC<T>>> bcs;
+  {
+    auto V0 = V->sub({0});
+    std::vector<std::int32_t> facets;
+    const int sym = tag_value("symmetry");
+    for (std::size_t i = 0; i < m.facets->values().size(); ++i)
+      if (m.facets->values()[i] == sym)
+        facets.push_back(m.facets->indices()[i]);
+    auto dofs = fem::locate_dofs_topological(*V0, 2, facets);
+    bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0));
+  }
+
+  const auto& imap = *V->dofmap()->index_map;
+  const int bs = V->dofmap()->index_map_bs();
+  Mat A = fem::petsc::create_matrix(*Jf, "aij");
+  Vec b = la::petsc::create_vector(imap, bs);
+  Vec dx;
+  VecDuplicate(b, &dx);
+  Vec x = la::petsc::create_vector_wrap(*u->x());
+  KSP ksp;
+  KSPCreate(comm, &ksp);
+  KSPSetType(ksp, KSPPREONLY);
+  PC pc;
+  KSPGetPC(ksp, &pc);
+  PCSetType(pc, PCLU);
+  PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
+
+  auto residual = [&]()
+  {
+    Vec bl;
+    VecGhostGetLocalForm(b, &bl);
+    VecSet(bl, 0.0);
+    VecGhostRestoreLocalForm(b, &bl);
+    fem::petsc::assemble_vector(b, *R);
+    VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
+    VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
+    fem::petsc::set_bc(b, bcs, x, -1.0);
+    PetscReal n;
+    VecNorm(b, NORM_2, &n);
+    return double(n);
+  };
+
+  MmsLevel L;
+  L.refinements = refinements;
+  spdlog::debug("MMS P{} level {}: min dihedral angle {:.2f} deg", order, refinements,
+                mesh_quality(*m.mesh).min_dihedral_deg);
+  // Force scale: |R(0) - R(u_ex)| (u = 0: the full manufactured load).
+  const double r0 = residual();
+  // Newton from the interpolant of u_ex (from u = 0 the
+  // first iterates of the membrane-dominated problem may invert elements);
+  // the converged discrete solution does not depend on the initial guess.
+  if (!patch) // the patch test starts from u = 0
+  {
+    auto e = fem::create_expression<T>(
+        *uf.u_ex, std::map<std::string, std::shared_ptr<const fem::Function<T>>>{},
+        std::map<std::string, std::shared_ptr<const fem::Constant<T>>>{}, m.mesh);
+    u->interpolate(e);
+    auto arr = u->x()->mutable_array();
+    for (const auto& bc : bcs)
+      bc->set(arr, 1.0); // u_x = 0 exactly on the symmetry face
+    u->x()->scatter_fwd();
+  }
+  double r = residual();
+  for (int it = 0; it < 30; ++it)
+  {
+    if (r <= 1e-11 * r0)
+      break;
+    MatZeroEntries(A);
+    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *Jf, bcs);
+    MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
+    MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+    fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V, bcs);
+    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+    KSPSetOperators(ksp, A, A);
+    KSPSolve(ksp, b, dx);
+    KSPConvergedReason reason;
+    KSPGetConvergedReason(ksp, &reason);
+    if (reason < 0)
+      throw SolveError(fmt::format("MMS P{} refinement {}: LU solve failed (KSP reason {})", order,
+                                   refinements, int(reason)));
+    // Full step, halved while the residual norm grows (or is not finite).
+    const double r_old = r;
+    double step = 1.0;
+    VecAXPY(x, -step, dx);
+    u->x()->scatter_fwd();
+    r = residual();
+    for (int k = 0; k < 12 && !(r < r_old); ++k)
+    {
+      step *= 0.5;
+      VecAXPY(x, step, dx); // back to half of the previous step
+      u->x()->scatter_fwd();
+      r = residual();
+    }
+    PetscReal ndx, nx;
+    VecNorm(dx, NORM_2, &ndx);
+    ndx *= step;
+    VecNorm(x, NORM_2, &nx);
+    L.newton_iterations = it + 1;
+    spdlog::debug("MMS P{} level {}: Newton {} |R| = {:.3e} (rel {:.3e}), |du| = {:.3e}", order,
+                  refinements, it + 1, r, r / r0, ndx);
+    if (!std::isfinite(r))
+      break;
+    if (ndx <= 1e-13 * nx && r <= 1e-8 * r0)
+      break;
+  }
+  KSPDestroy(&ksp);
+  VecDestroy(&x);
+  VecDestroy(&dx);
+  VecDestroy(&b);
+  MatDestroy(&A);
+  if (!(r <= 1e-8 * r0))
+    throw SolveError(fmt::format("MMS P{} refinement {}: Newton did not converge (|R|/|R0| = {:.3e})",
+                                 order, refinements, r / r0));
+
+  auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
+  L.error_l2 = std::sqrt(scalar(patch ? uf.patch_error_l2 : uf.error_l2));
+  L.error_h1 = std::sqrt(scalar(patch ? uf.patch_error_h1 : uf.error_h1));
+  L.rel_l2 = L.error_l2 / std::sqrt(scalar(uf.norm_l2));
+  L.rel_h1 = L.error_h1 / std::sqrt(scalar(uf.norm_h1));
+
+  const std::int32_t ncells = m.mesh->topology().index_map(3)->size_local();
+  std::vector<std::int32_t> cells(ncells);
+  std::iota(cells.begin(), cells.end(), 0);
+  const auto hs = mesh::h(*m.mesh, cells, 3);
+  double hloc = hs.empty() ? 0.0 : *std::max_element(hs.begin(), hs.end());
+  MPI_Allreduce(&hloc, &L.h, 1, MPI_DOUBLE, MPI_MAX, comm);
+  L.cells = m.mesh->topology().index_map(3)->size_global();
+  L.min_dihedral_deg = mesh_quality(*m.mesh).min_dihedral_deg;
+  L.dofs = imap.size_global() * bs;
+  L.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return L;
+}
+
+MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm)
+{
+  // Each level is meshed by gmsh at mesh_size / 2^l, not by gmsh's uniform
+  // splitting (geometry.refinements): on the split meshes (boundary nodes
+  // snapped to the sphere) the P1 MMS orders were only L2 1.2, H1 0.6-0.8
+  // (mesh_size 16 mm, refinements 0-2; docs/CONVERGENCE.md). The meshes are
+  // not nested, so the mesh size of a level is h_eff = (V / cells)^(1/3).
+  MmsStudy s;
+  s.order = order;
+  s.mesh_size = mesh_size;
+  const double R = c.number("geometry.R"), H = c.number("geometry.H");
+  const double volume = M_PI * H * (3 * R * R + H * H) / 12; // the half cap
+  for (int l = 0; l < levels; ++l)
+  {
+    const double hl = mesh_size / std::pow(2.0, l);
+    s.levels.push_back(solve_mms(c, order, hl, 0, comm));
+    auto& L = s.levels.back();
+    L.refinements = l;
+    L.mesh_size = hl;
+    L.h_eff = std::cbrt(volume / double(L.cells));
+    spdlog::info("MMS P{} level {} (mesh_size {:g}): {} cells, {} dofs, L2 {:.4e}, H1 {:.4e} ({} "
+                 "Newton, {:.1f} s)",
+                 order, l, hl, L.cells, L.dofs, L.error_l2, L.error_h1, L.newton_iterations,
+                 L.seconds);
+  }
+  for (std::size_t i = 0; i + 1 < s.levels.size(); ++i)
+  {
+    const double dh = std::log(s.levels[i].h_eff / s.levels[i + 1].h_eff);
+    s.order_l2.push_back(std::log(s.levels[i].error_l2 / s.levels[i + 1].error_l2) / dh);
+    s.order_h1.push_back(std::log(s.levels[i].error_h1 / s.levels[i + 1].error_h1) / dh);
+  }
+  return s;
+}
+
+nlohmann::json to_json(const MmsStudy& s)
+{
+  nlohmann::json j;
+  j["element_order"] = s.order;
+  j["mesh_size"] = s.mesh_size;
+  j["expected_order_l2"] = s.order + 1;
+  j["expected_order_h1"] = s.order;
+  for (const auto& L : s.levels)
+    j["levels"].push_back({{"level", L.refinements}, {"mesh_size", L.mesh_size},
+                           {"cells", L.cells}, {"dofs", L.dofs}, {"h_max", L.h},
+                           {"h_eff", L.h_eff}, {"min_dihedral_deg", L.min_dihedral_deg}, {"error_l2", L.error_l2}, {"error_h1", L.error_h1},
+                           {"relative_error_l2", L.rel_l2}, {"relative_error_h1", L.rel_h1},
+                           {"newton_iterations", L.newton_iterations}, {"seconds", L.seconds}});
+  j["order_l2"] = s.order_l2;
+  j["order_h1"] = s.order_h1;
+  return j;
+}
+
+std::string mms_table(const MmsStudy& s)
+{
+  std::string out = fmt::format("MMS P{} (mesh_size {:g} m): expected orders L2 {}, H1 {}\n",
+                                s.order, s.mesh_size, s.order + 1, s.order);
+  out += fmt::format("{:>5} {:>8} {:>8} {:>10} {:>12} {:>12} {:>8} {:>8}\n", "level", "cells",
+                     "dofs", "h_eff[mm]", "L2 error", "H1 error", "p(L2)", "p(H1)");
+  for (std::size_t i = 0; i < s.levels.size(); ++i)
+  {
+    const auto& L = s.levels[i];
+    std::string pl = i ? fmt::format("{:.3f}", s.order_l2[i - 1]) : "-";
+    std::string ph = i ? fmt::format("{:.3f}", s.order_h1[i - 1]) : "-";
+    out += fmt::format("{:>5} {:>8} {:>8} {:>10.3f} {:>12.4e} {:>12.4e} {:>8} {:>8}\n",
+                       L.refinements, L.cells, L.dofs, 1e3 * L.h_eff, L.error_l2, L.error_h1, pl, ph);
+  }
+  return out;
+}
+} // namespace breastsim

@@ -1,0 +1,56 @@
+#pragma once
+// Method of manufactured solutions for the full energy (tissue + skin + base
+// springs, gravity and sutures off): forms/mms.py. On the half cap refined
+// uniformly, solve R(u_h; v) = R(u_ex; v) for u_h and measure the L2 and H1
+// errors against u_ex; the observed orders should be p + 1 and p for Pp.
+#include "config.hpp"
+#include <cstdint>
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace breastsim
+{
+struct MmsLevel
+{
+  int refinements = 0;
+  std::int64_t cells = 0, dofs = 0;
+  double h = 0;                 ///< largest cell diameter [m]
+  double mesh_size = 0;         ///< gmsh target size of this level [m]
+  double h_eff = 0;             ///< (cap volume / cells)^(1/3) [m]
+  double error_l2 = 0;          ///< ||u_h - u_ex||_L2 [m^(5/2)]
+  double error_h1 = 0;          ///< |u_h - u_ex|_H1 (seminorm)
+  double rel_l2 = 0, rel_h1 = 0; ///< relative to ||u_ex||, |u_ex|_H1
+  double min_dihedral_deg = 0; ///< mesh quality
+  int newton_iterations = 0;
+  double seconds = 0;
+};
+
+struct MmsStudy
+{
+  int order = 1;
+  double mesh_size = 0;
+  std::vector<MmsLevel> levels;
+  /// Observed orders between consecutive levels,
+  /// log(e_i / e_{i+1}) / log(h_eff_i / h_eff_{i+1}); one fewer than levels.
+  std::vector<double> order_l2, order_h1;
+};
+
+/// The material parameters of `c` (its physics keys; registry defaults
+/// otherwise) with gravity, sutures and the tension-field relaxation off.
+/// Geometry: the case's R and H; element order `order`; the mesh of
+/// `mesh_size` refined `refinements` times. Collective.
+/// patch: the patch test instead (u_lin, a homogeneous deformation, solved
+/// from u = 0; the errors must be round-off; rel_* still relative to u_ex).
+MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
+                   bool patch = false);
+
+/// solve_mms on meshes of size mesh_size / 2^l, l = 0 .. levels-1 (each
+/// meshed by gmsh, no splitting), and the observed orders.
+MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm);
+
+nlohmann::json to_json(const MmsStudy& s);
+/// Printable table: level, cells, dofs, h, L2, H1, orders.
+std::string mms_table(const MmsStudy& s);
+} // namespace breastsim
