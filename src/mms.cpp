@@ -56,14 +56,6 @@ MmsForms mms_forms(int order)
   throw InputError(fmt::format("MMS: element order {} is not compiled in (1, 2)", order));
 }
 
-int tag_value(const std::string& name)
-{
-  for (const auto& t : generated::tags())
-    if (t.name == name)
-      return t.value;
-  throw std::logic_error("unknown boundary tag " + name);
-}
-
 double sum_all(double local, MPI_Comm comm)
 {
   double global = 0;
@@ -90,7 +82,7 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   meshes::TaggedMesh tm;
   tm.order = order;
   if (rank == 0)
-    tm = meshes::mesh_half_cap(spec, tag_value("base"), tag_value("skin"), tag_value("symmetry"));
+    tm = meshes::mesh_half_cap(spec, generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"));
   TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
 
   auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
@@ -131,7 +123,7 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   {
     auto V0 = V->sub({0});
     std::vector<std::int32_t> facets;
-    const int sym = tag_value("symmetry");
+    const int sym = generated::tag("symmetry");
     for (std::size_t i = 0; i < m.facets->values().size(); ++i)
       if (m.facets->values()[i] == sym)
         facets.push_back(m.facets->indices()[i]);

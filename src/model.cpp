@@ -19,14 +19,6 @@ using namespace dolfinx;
 
 namespace
 {
-int tag_value(const std::string& name)
-{
-  for (const auto& t : generated::tags())
-    if (t.name == name)
-      return t.value;
-  throw std::logic_error("unknown boundary tag " + name);
-}
-
 std::vector<std::int32_t> tagged_facets(const mesh::MeshTags<std::int32_t>& tags, int value)
 {
   std::vector<std::int32_t> out;
@@ -67,13 +59,13 @@ Model::Model(TaggedDolfinxMesh mesh, Constraints constraints)
   if (_constraints.symmetry)
   {
     auto V0 = _V->sub({0});
-    auto facets = tagged_facets(*_mesh.facets, tag_value("symmetry"));
+    auto facets = tagged_facets(*_mesh.facets, generated::tag("symmetry"));
     auto dofs = fem::locate_dofs_topological(*V0, tdim - 1, facets);
     _bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0));
   }
   if (_constraints.fixed_base)
   {
-    auto facets = tagged_facets(*_mesh.facets, tag_value("base"));
+    auto facets = tagged_facets(*_mesh.facets, generated::tag("base"));
     auto dofs = fem::locate_dofs_topological(*_V, tdim - 1, facets);
     _bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(
         std::vector<T>{0, 0, 0}, std::move(dofs), _V));
@@ -162,7 +154,7 @@ std::vector<std::string> Model::term_names() const
 
 std::vector<std::int32_t> Model::boundary_nodes(const std::string& tag) const
 {
-  auto facets = tagged_facets(*_mesh.facets, tag_value(tag));
+  auto facets = tagged_facets(*_mesh.facets, generated::tag(tag));
   auto nodes = fem::locate_dofs_topological(*_V, 2, facets);
   std::sort(nodes.begin(), nodes.end());
   return nodes;

@@ -18,13 +18,6 @@ double since(clock_type::time_point t0)
   return std::chrono::duration<double>(clock_type::now() - t0).count();
 }
 
-int tag(const std::string& name)
-{
-  for (const auto& t : generated::tags())
-    if (t.name == name)
-      return t.value;
-  throw std::logic_error("unknown tag " + name);
-}
 } // namespace
 
 meshes::HalfCapSpec cap_spec(const Config& c)
@@ -46,7 +39,7 @@ TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm)
   meshes::TaggedMesh m;
   m.order = spec.order;
   if (rank == 0)
-    m = meshes::mesh_half_cap(spec, tag("base"), tag("skin"), tag("symmetry"));
+    m = meshes::mesh_half_cap(spec, generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"));
   return to_dolfinx(comm, m, spec.order);
 }
 

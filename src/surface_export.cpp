@@ -9,14 +9,6 @@ namespace breastsim
 {
 namespace
 {
-int skin_tag()
-{
-  for (const auto& t : generated::tags())
-    if (t.name == "skin")
-      return t.value;
-  throw std::logic_error("no 'skin' tag in the registry");
-}
-
 /// Local skin triangles of owned cells as (X, x) of the three corners:
 /// 18 doubles each, ordered so that the normal points out of the body.
 std::vector<double> local_triangles(const Model& model)
@@ -34,7 +26,7 @@ std::vector<double> local_triangles(const Model& model)
   const auto& layout = V->dofmap()->element_dof_layout();
   const auto X = V->tabulate_dof_coordinates(false);
   auto u = model.displacement()->x()->array();
-  const int skin = skin_tag();
+  const int skin = generated::tag("skin");
 
   std::vector<double> out;
   for (std::size_t i = 0; i < tags.values().size(); ++i)

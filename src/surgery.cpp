@@ -20,13 +20,8 @@ double since(clock_type::time_point t0)
 
 std::array<int, 5> suture_tags()
 {
-  std::array<int, 5> t{};
-  const char* names[5] = {"base", "skin", "symmetry", "suture_abd", "suture_bcd"};
-  for (int i = 0; i < 5; ++i)
-    for (const auto& g : generated::tags())
-      if (g.name == names[i])
-        t[i] = g.value;
-  return t;
+  return {generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"),
+          generated::tag("suture_abd"), generated::tag("suture_bcd")};
 }
 } // namespace
 
