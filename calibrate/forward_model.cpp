@@ -26,6 +26,7 @@ void ForwardModel::rebuild(const Config& c)
   _R = c.number("geometry.R");
   _H = c.number("geometry.H");
   _mesh_size = c.number("geometry.mesh_size");
+  _fixed_base = c.flag("base.fixed");
   for (auto& u : _last)
     u.clear(); // solutions on another mesh cannot start this one
   ++_meshes;
@@ -62,10 +63,10 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
   return r.observables;
 }
 
-std::vector<Observables> ForwardModel::solve(const Config& c)
+std::vector<Observables> ForwardModel::solve(const Config& c, const PostureVisitor& visit)
 {
   if (!_model || c.number("geometry.R") != _R || c.number("geometry.H") != _H
-      || c.number("geometry.mesh_size") != _mesh_size)
+      || c.number("geometry.mesh_size") != _mesh_size || c.flag("base.fixed") != _fixed_base)
     rebuild(c);
   apply_parameters(c, *_model);
   std::vector<Observables> obs;
@@ -73,6 +74,8 @@ std::vector<Observables> ForwardModel::solve(const Config& c)
   {
     obs.push_back(solve_one(i, c));
     ++_posture_solves;
+    if (visit)
+      visit(i, *_model);
   }
   return obs;
 }

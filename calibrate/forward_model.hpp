@@ -7,6 +7,7 @@
 #include "newton.hpp"
 #include "observables.hpp"
 #include "posture.hpp"
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -17,9 +18,13 @@ class ForwardModel
 public:
   ForwardModel(std::vector<Posture> postures, MPI_Comm comm);
   ~ForwardModel();
+  /// Called after each posture's solve with the posture's index and the
+  /// solved model (e.g. to read the deformed skin surface).
+  using PostureVisitor = std::function<void(std::size_t posture, const Model& model)>;
+
   /// Observables of each posture (in the order given) for case `c`.
   /// Throws SolveError if a posture cannot be solved.
-  std::vector<Observables> solve(const Config& c);
+  std::vector<Observables> solve(const Config& c, const PostureVisitor& visit = {});
 
   int posture_solves() const { return _posture_solves; }
   int warm_starts() const { return _warm_starts; }
@@ -33,6 +38,7 @@ private:
   std::vector<Posture> _postures;
   MPI_Comm _comm;
   double _R = -1, _H = -1, _mesh_size = -1;
+  bool _fixed_base = false;
   std::unique_ptr<Model> _model;
   std::unique_ptr<NewtonSolver> _newton;
   std::unique_ptr<ObservableProbe> _probe;

@@ -9,4 +9,6 @@ TERMS = [
     "skin",
     "base_springs",
     "sutures",
+    "suspensory_ligament",
+    "gland_core",
 ]

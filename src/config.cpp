@@ -454,6 +454,10 @@ void Config::validate() const
   if (number("solver.min_load_step") > number("solver.initial_load_step"))
     throw InputError(fmt::format("key 'solver.min_load_step' = {} exceeds solver.initial_load_step = {}",
                                  number("solver.min_load_step"), number("solver.initial_load_step")));
+  if (!flag("base.fixed") && !flag("terms.base_springs"))
+    throw InputError("key 'terms.base_springs' = false with base.fixed = false leaves the base "
+                     "held by nothing: set base.fixed = true (clamped base) or "
+                     "terms.base_springs = true");
   if (strings("postures.names").empty() && numbers("postures.theta_deg").empty())
     throw InputError("no posture requested: set postures.names and/or postures.theta_deg");
 }

@@ -94,6 +94,14 @@ void render_pictures(const std::filesystem::path& result_dir, const PictureOptio
   check_code(code, "rendering the pictures of " + result_dir.string());
 }
 
+void run_viewer_script(const std::string& name, const std::vector<std::string>& args,
+                       const std::string& what, MPI_Comm comm)
+{
+  std::vector<std::string> argv = {viewer_python(), (viewer_dir() / name).string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  check_code(run_on_root(argv, comm), what);
+}
+
 void write_view_page(const std::filesystem::path& result_dir,
                      const std::filesystem::path& compare, MPI_Comm comm)
 {

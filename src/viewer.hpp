@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <mpi.h>
 #include <string>
+#include <vector>
 
 namespace breastsim
 {
@@ -29,6 +30,11 @@ void check_picture_tools(MPI_Comm comm);
 /// of the surface_<posture>.json files in `result_dir` into `result_dir`.
 void render_pictures(const std::filesystem::path& result_dir, const PictureOptions& o,
                      MPI_Comm comm);
+
+/// Collective. Run the viewer script `name` (in viewer_dir()) with `args`
+/// under viewer_python() on rank 0; throws naming `what` if it fails.
+void run_viewer_script(const std::string& name, const std::vector<std::string>& args,
+                       const std::string& what, MPI_Comm comm);
 
 /// Collective. Write `result_dir`/index.html, the self-contained 3D page.
 void write_view_page(const std::filesystem::path& result_dir,

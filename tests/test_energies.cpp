@@ -140,5 +140,43 @@ TEST_P(Energies, BaseSprings)
   EXPECT_NEAR(m->energy("base_springs") / expected, 1.0, GetParam() == 1 ? 0.01 : 1e-3);
 }
 
+TEST_P(Energies, SuspensoryLigament)
+{
+  // u = a on the skin: E = k_l/2 |a|^2 x (skin area with Z > 0) = half the
+  // skin (the cap is symmetric in z). Facets cut by Z = 0 are counted by
+  // their quadrature points: O(h) in the area.
+  const std::array<double, 3> a = {0.001, -0.002, 0.003};
+  set_homogeneous(*m, {1, 0, 0, 0, 1, 0, 0, 0, 1}, a);
+  const double k = 1500;
+  m->set_parameter("k_l", {k});
+  const double expected = k / 2 * (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * m->area("skin") / 2;
+  EXPECT_NEAR(m->energy("suspensory_ligament") / expected, 1.0, GetParam() == 1 ? 0.03 : 0.01);
+}
+
+TEST_P(Energies, GlandCore)
+{
+  // Homogeneous F0: E = m_g W(F0) x V_core, V_core = volume of the half cap
+  // inside the cylinder x^2 + z^2 < r^2 around the nipple axis:
+  //   V_core = pi [ (Rs^3 - (Rs^2 - r^2)^(3/2)) / 3 - (Rs - H) r^2 / 2 ],
+  // Rs = (R^2 + H^2) / (2 H) the sphere radius. Cells are counted by their
+  // quadrature points: O(h) in the volume.
+  const std::array<double, 9> F0 = {1.05, 0.02, 0.0, 0.0, 0.97, 0.01, 0.0, 0.0, 1.02};
+  set_homogeneous(*m, F0);
+  const double mu = 500, lmbda = 6000, mg = 3, r = 0.03;
+  m->set_parameter("mu", {mu});
+  m->set_parameter("lmbda", {lmbda});
+  m->set_parameter("m_g", {mg});
+  m->set_parameter("r_g", {r});
+  double trFFt = 0;
+  for (double f : F0)
+    trFFt += f * f;
+  const double J = det3(F0);
+  const double W = mu / 2 * (trFFt - 3 - 2 * std::log(J)) + lmbda / 2 * (J - 1) * (J - 1);
+  const double R = c.number("geometry.R"), H = c.number("geometry.H");
+  const double Rs = (R * R + H * H) / (2 * H);
+  const double V = M_PI * ((Rs * Rs * Rs - std::pow(Rs * Rs - r * r, 1.5)) / 3 - (Rs - H) * r * r / 2);
+  EXPECT_NEAR(m->energy("gland_core") / (mg * W * V), 1.0, 0.05);
+}
+
 INSTANTIATE_TEST_SUITE_P(Orders, Energies, ::testing::Values(1, 2),
                          [](const auto& info) { return "P" + std::to_string(info.param); });

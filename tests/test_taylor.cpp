@@ -135,7 +135,9 @@ INSTANTIATE_TEST_SUITE_P(
                       TaylorCase{"", 2, 1}, TaylorCase{"tissue", 2, 1}, TaylorCase{"skin", 2, 0},
                       TaylorCase{"skin", 2, 1}, TaylorCase{"skin", 2, 1, 0.1},
                       TaylorCase{"base_springs", 2, 1}, TaylorCase{"sutures", 1, 1},
-                      TaylorCase{"sutures", 2, 1}),
+                      TaylorCase{"sutures", 2, 1}, TaylorCase{"suspensory_ligament", 1, 1},
+                      TaylorCase{"suspensory_ligament", 2, 1}, TaylorCase{"gland_core", 1, 1},
+                      TaylorCase{"gland_core", 2, 1}),
     [](const auto& info)
     {
       const auto& p = info.param;

@@ -25,6 +25,8 @@ int main(int argc, char** argv)
       cli::add_surgery_command(app),
       cli::add_sweep_command(app),
       cli::add_converge_command(app),
+      cli::add_record_command(app),
+      cli::add_diagnose_command(app),
   };
 
   try

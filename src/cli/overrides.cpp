@@ -6,7 +6,7 @@ namespace breastsim::cli
 {
 Config load_case(const std::string& file, const std::vector<std::string>& sets)
 {
-  Config c = Config::from_file(file);
+  Config c = file.empty() ? Config() : Config::from_file(file);
   for (const auto& s : sets)
   {
     const auto eq = s.find('=');

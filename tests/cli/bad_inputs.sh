@@ -59,6 +59,9 @@ expect_error incision_h "key 'incision.h'" surgery "$CASES/default.toml" --set i
 expect_error incision_angle "key 'incision.a_deg'" surgery "$CASES/default.toml" --set incision.a_deg=60
 expect_error incision_d "key 'incision.d'" surgery "$CASES/default.toml" --set incision.d=0.08
 expect_error sweep_vary "unknown key 'q'" sweep "$CASES/default.toml" --vary q=1,2
+expect_error base_held_by_nothing "leaves the base held by nothing" simulate "$CASES/default.toml" --set terms.base_springs=false
+expect_error unknown_hidden "unknown candidate physics 'dark_matter'" record "$CASES/default.toml" --hidden dark_matter
+expect_error hidden_already_on "nothing would be hidden" record "$CASES/default.toml" --hidden skin
 
 echo "$((n - fails)) passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -1,0 +1,16 @@
+#pragma once
+// Files of a diagnosis (written into a staging result folder):
+//   diagnosis.json, diagnosis.txt    the report (JSON, plain words)
+//   residuals.json                   points and normal distances before/after [mm]
+//   residuals_<posture>.xdmf         the same as a point cloud for ParaView
+//   case.diagnosed.toml              the refitted case (discovered terms on)
+//   residuals_<posture>.png          residual maps before/after (diagnose_plots.py)
+#include "diagnose.hpp"
+#include <filesystem>
+
+namespace breastsim::calibration
+{
+/// Collective (rank 0 writes; the pictures run under python3 on rank 0).
+void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const Recording& rec,
+                     MPI_Comm comm);
+} // namespace breastsim::calibration

@@ -1,0 +1,176 @@
+// The diagnosis as JSON and as plain words (declared in diagnose.hpp).
+#include "diagnose.hpp"
+#include <cmath>
+#include <fmt/format.h>
+
+namespace breastsim::calibration
+{
+namespace
+{
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
+
+nlohmann::json to_json(const FitState& s, const Recording& rec)
+{
+  nlohmann::json j;
+  j["parameters"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < s.names.size(); ++i)
+  {
+    nlohmann::json p = {{"name", s.names[i]}, {"unit", s.units[i]}, {"value", s.values[i]}};
+    if (i < s.uncertainty.interval.size())
+    {
+      p["interval95"] = {number_or_null(s.uncertainty.interval[i][0]),
+                         number_or_null(s.uncertainty.interval[i][1])};
+      p["se_log"] = number_or_null(s.uncertainty.se_log[i]);
+      p["flag"] = s.uncertainty.flags[i];
+    }
+    j["parameters"].push_back(p);
+  }
+  j["chi2"] = s.chi2;
+  j["dof"] = s.dof;
+  j["reduced_chi2"] = s.chi2 / std::max(s.dof, 1);
+  j["gof_z"] = s.gof_z;
+  j["gof_p"] = s.gof_p;
+  j["evaluations"] = s.evaluations;
+  j["postures"] = nlohmann::json::array();
+  for (std::size_t p = 0; p < rec.postures.size(); ++p)
+  {
+    nlohmann::json q = {{"name", rec.postures[p].name},
+                        {"rms_mm", 1e3 * s.rms[p]},
+                        {"max_mm", 1e3 * s.max_abs[p]}};
+    if (std::isfinite(s.nipple_error[p][0]))
+      q["nipple_error_mm"] = {1e3 * s.nipple_error[p][0], 1e3 * s.nipple_error[p][1],
+                              1e3 * s.nipple_error[p][2]};
+    j["postures"].push_back(q);
+  }
+  return j;
+}
+
+std::string fit_line(const FitState& s)
+{
+  std::string p;
+  for (std::size_t i = 0; i < s.names.size(); ++i)
+  {
+    p += fmt::format("{}{} = {:.4g} {}", i ? ", " : "", s.names[i], s.values[i], s.units[i]);
+    if (i < s.uncertainty.interval.size())
+      p += fmt::format(" [{:.4g}, {:.4g}]", s.uncertainty.interval[i][0], s.uncertainty.interval[i][1]);
+  }
+  return p.empty() ? "(no free parameter)" : p;
+}
+} // namespace
+
+nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
+{
+  nlohmann::json j;
+  j["format"] = "breastsim-diagnosis/1";
+  j["noise_sigma_mm"] = 1e3 * d.noise_sigma;
+  j["verdict"] = d.verdict;
+  j["discovered"] = d.discovered;
+  j["rounds"] = nlohmann::json::array();
+  for (const auto& r : d.rounds)
+  {
+    nlohmann::json q;
+    q["fit"] = to_json(r.before, rec);
+    q["regions"] = nlohmann::json::array();
+    for (const auto& g : r.regions)
+      q["regions"].push_back({{"posture", g.posture},
+                              {"where", g.where},
+                              {"points", g.points},
+                              {"centroid_mm", {1e3 * g.centroid[0], 1e3 * g.centroid[1], 1e3 * g.centroid[2]}},
+                              {"mean_residual_mm", 1e3 * g.mean_residual},
+                              {"max_residual_mm", 1e3 * g.max_residual},
+                              {"z", g.z}});
+    q["scores"] = nlohmann::json::array();
+    for (const auto& s : r.scores)
+      q["scores"].push_back({{"candidate", s.name},
+                             {"score", s.score},
+                             {"p_value", s.p_value},
+                             {"linearised_estimate", s.estimate},
+                             {"mesh_allowance", s.mesh_allowance}});
+    if (!r.tested.empty())
+    {
+      q["tested"] = r.tested;
+      q["refits"] = nlohmann::json::array();
+      for (const auto& [name, lr] : r.refits)
+        q["refits"].push_back({{"candidate", name}, {"likelihood_ratio", lr}});
+      q["refit"] = to_json(r.after, rec);
+      q["likelihood_ratio"] = r.lr;
+      q["critical_value"] = r.critical_used;
+      q["critical_value_noise_only"] = r.critical;
+      q["accepted"] = r.accepted;
+    }
+    j["rounds"].push_back(q);
+  }
+  j["final"] = to_json(d.final_fit, rec);
+  j["posture_solves"] = d.posture_solves;
+  j["wall_time_s"] = d.seconds;
+  return j;
+}
+
+std::string report_text(const Diagnosis& d, const Recording& rec)
+{
+  std::string s;
+  int n = 0;
+  for (const auto& p : rec.postures)
+    n += static_cast<int>(p.points.size());
+  s += fmt::format("Diagnosis of {} recorded points in {} postures (noise {:.3f} mm)\n", n,
+                   rec.postures.size(), 1e3 * d.noise_sigma);
+  for (std::size_t k = 0; k < d.rounds.size(); ++k)
+  {
+    const Round& r = d.rounds[k];
+    s += fmt::format("\nRound {}: current model fitted: {}\n", k + 1, fit_line(r.before));
+    s += fmt::format("  goodness of fit: chi2/dof = {:.3f} ({} dof), z = {:.1f}, p = {:.2g}\n",
+                     r.before.chi2 / r.before.dof, r.before.dof, r.before.gof_z, r.before.gof_p);
+    for (std::size_t p = 0; p < rec.postures.size(); ++p)
+      s += fmt::format("  {:<12} RMS {:.3f} mm, max {:.3f} mm\n", rec.postures[p].name,
+                       1e3 * r.before.rms[p], 1e3 * r.before.max_abs[p]);
+    s += "  WHERE: ";
+    if (r.regions.empty())
+      s += "no region of systematic residual\n";
+    else
+    {
+      s += fmt::format("{} region(s) of systematic residual\n", r.regions.size());
+      for (std::size_t g = 0; g < std::min<std::size_t>(r.regions.size(), 6); ++g)
+      {
+        const Region& x = r.regions[g];
+        s += fmt::format("    {:<12} {}: {} points, recording {} the model by {:.2f} mm on average "
+                         "(max {:.2f} mm), z = {:.1f}\n",
+                         x.posture, x.where, x.points, x.mean_residual > 0 ? "outside" : "inside",
+                         1e3 * std::abs(x.mean_residual), 1e3 * x.max_residual, x.z);
+      }
+    }
+    s += "  WHAT: candidate scores (Lagrange multiplier, one-sided; mesh-error allowance):\n";
+    for (const auto& c : r.scores)
+      s += fmt::format("    {:<20} S = {:9.1f}   p = {:.2g}   allowance {:.1f}\n", c.name, c.score,
+                       c.p_value, c.mesh_allowance);
+    if (r.tested.empty())
+      s += "  no candidate is significant\n";
+    else
+    {
+      std::string refits;
+      for (const auto& [name, lr] : r.refits)
+        refits += fmt::format("{}{} LR = {:.1f}", refits.empty() ? "" : ", ", name, lr);
+      std::string runner = "(none)";
+      for (const auto& c : r.scores)
+        if (c.name != r.tested)
+        {
+          runner = c.name;
+          break;
+        }
+      s += fmt::format("  best: {} (runner-up: {}; refitted: {})\n", r.tested, runner, refits);
+      s += fmt::format("  MODEL IT: refit with {}: {}\n", r.tested, fit_line(r.after));
+      s += fmt::format("  likelihood ratio {:.1f} against the critical value {:.1f} ({:.1f} + mesh "
+                       "allowance {:.1f}): {}\n",
+                       r.lr, r.critical_used, r.critical, r.critical_used - r.critical,
+                       r.accepted ? "ACCEPTED" : "rejected");
+      if (r.accepted)
+        for (std::size_t p = 0; p < rec.postures.size(); ++p)
+          s += fmt::format("  IMPROVED {:<12} RMS {:.3f} -> {:.3f} mm, max {:.3f} -> {:.3f} mm\n",
+                           rec.postures[p].name, 1e3 * r.before.rms[p], 1e3 * r.after.rms[p],
+                           1e3 * r.before.max_abs[p], 1e3 * r.after.max_abs[p]);
+    }
+  }
+  s += "\n" + d.verdict + "\n";
+  s += fmt::format("({} posture solves, {:.1f} s)\n", d.posture_solves, d.seconds);
+  return s;
+}
+} // namespace breastsim::calibration

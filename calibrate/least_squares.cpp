@@ -1,0 +1,165 @@
+#include "least_squares.hpp"
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace breastsim::calibration
+{
+namespace
+{
+double sum_squares(const std::vector<double>& r)
+{
+  double s = 0;
+  for (double x : r)
+    s += x * x;
+  return s;
+}
+} // namespace
+
+bool solve_dense(Matrix A, std::vector<double> b, std::vector<double>& x)
+{
+  const std::size_t n = b.size();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    std::size_t p = k;
+    for (std::size_t i = k + 1; i < n; ++i)
+      if (std::abs(A[i][k]) > std::abs(A[p][k]))
+        p = i;
+    double scale = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      scale = std::max(scale, std::abs(A[i][k]));
+    if (!(std::abs(A[p][k]) > 1e-14 * scale) || scale == 0)
+      return false;
+    std::swap(A[k], A[p]);
+    std::swap(b[k], b[p]);
+    for (std::size_t i = k + 1; i < n; ++i)
+    {
+      const double f = A[i][k] / A[k][k];
+      for (std::size_t j = k; j < n; ++j)
+        A[i][j] -= f * A[k][j];
+      b[i] -= f * b[k];
+    }
+  }
+  x.assign(n, 0.0);
+  for (std::size_t k = n; k-- > 0;)
+  {
+    double s = b[k];
+    for (std::size_t j = k + 1; j < n; ++j)
+      s -= A[k][j] * x[j];
+    x[k] = s / A[k][k];
+  }
+  return true;
+}
+
+Matrix fd_jacobian(const ResidualFunction& f, const std::vector<double>& y,
+                   const std::vector<double>& r0, double step, int& evaluations)
+{
+  Matrix J(r0.size(), std::vector<double>(y.size()));
+  for (std::size_t j = 0; j < y.size(); ++j)
+  {
+    auto yp = y;
+    yp[j] += step;
+    const auto rp = f(yp);
+    ++evaluations;
+    for (std::size_t i = 0; i < r0.size(); ++i)
+      J[i][j] = (rp[i] - r0[i]) / step;
+  }
+  return J;
+}
+
+LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
+                              const std::vector<double>& lo, const std::vector<double>& hi,
+                              const LsqOptions& o,
+                              const std::function<void(int, double, const std::vector<double>&)>& progress)
+{
+  const std::size_t n = y0.size();
+  LsqResult res;
+  for (std::size_t j = 0; j < n; ++j)
+    y0[j] = std::clamp(y0[j], lo[j], hi[j]);
+  res.y = y0;
+  res.r = f(res.y);
+  ++res.evaluations;
+  res.chi2 = sum_squares(res.r);
+  double lambda = 1e-3;
+  bool have_J = false;
+  res.stop_reason = "maximum number of iterations";
+  for (int it = 0; it < o.max_iterations; ++it)
+  {
+    if (!have_J)
+    {
+      res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations);
+      have_J = true;
+    }
+    Matrix A(n, std::vector<double>(n, 0.0));
+    std::vector<double> g(n, 0.0);
+    for (std::size_t i = 0; i < res.r.size(); ++i)
+      for (std::size_t a = 0; a < n; ++a)
+      {
+        g[a] += res.J[i][a] * res.r[i];
+        for (std::size_t b = 0; b < n; ++b)
+          A[a][b] += res.J[i][a] * res.J[i][b];
+      }
+    bool accepted = false;
+    double max_step = 0;
+    for (int attempt = 0; attempt < 8 && !accepted; ++attempt)
+    {
+      Matrix M = A;
+      for (std::size_t a = 0; a < n; ++a)
+        M[a][a] += lambda * std::max(A[a][a], 1e-12);
+      std::vector<double> minus_g(n), dy;
+      for (std::size_t a = 0; a < n; ++a)
+        minus_g[a] = -g[a];
+      if (!solve_dense(M, minus_g, dy))
+      {
+        lambda *= 4;
+        continue;
+      }
+      auto y1 = res.y;
+      max_step = 0;
+      for (std::size_t a = 0; a < n; ++a)
+      {
+        y1[a] = std::clamp(res.y[a] + dy[a], lo[a], hi[a]);
+        max_step = std::max(max_step, std::abs(y1[a] - res.y[a]));
+      }
+      if (max_step == 0)
+        break;
+      const auto r1 = f(y1);
+      ++res.evaluations;
+      const double chi2 = sum_squares(r1);
+      if (chi2 < res.chi2)
+      {
+        const double decrease = (res.chi2 - chi2) / std::max(res.chi2, 1e-300);
+        res.y = y1;
+        res.r = r1;
+        res.chi2 = chi2;
+        lambda = std::max(lambda / 3, 1e-9);
+        accepted = true;
+        have_J = false;
+        res.iterations = it + 1;
+        if (progress)
+          progress(res.iterations, res.chi2, res.y);
+        if (decrease < o.ftol_rel)
+        {
+          res.stop_reason = fmt::format("chi2 decreased by less than {:g} (relative)", o.ftol_rel);
+          it = o.max_iterations; // stop
+        }
+      }
+      else
+        lambda *= 4;
+    }
+    if (!accepted)
+    {
+      res.stop_reason = "no step decreases chi2 (at a minimum within the bounds)";
+      break;
+    }
+    if (max_step < o.xtol)
+    {
+      res.stop_reason = fmt::format("step below {:g} in ln p", o.xtol);
+      break;
+    }
+  }
+  if (!have_J) // Jacobian at the final point (uncertainty, score tests)
+    res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations);
+  return res;
+}
+} // namespace breastsim::calibration

@@ -1,0 +1,50 @@
+#pragma once
+// Bounded Levenberg-Marquardt for weighted least squares, min |r(y)|^2, with
+// a forward-difference Jacobian J = dr/dy (each column one evaluation of r):
+//   (J^T J + lambda diag(J^T J)) dy = -J^T r,   y <- clamp(y + dy, lo, hi),
+// lambda / 3 after a successful step, x 4 after a rejected one (Marquardt).
+// Used by the diagnosis, where each r(y) is a set of warm-started posture
+// solves and the residual vector is long (every recorded point).
+#include "objective.hpp"
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace breastsim::calibration
+{
+using ResidualFunction = std::function<std::vector<double>(const std::vector<double>& y)>;
+
+struct LsqOptions
+{
+  int max_iterations = 20;
+  double fd_step = 1e-3;   ///< forward-difference step in y
+  double xtol = 1e-3;      ///< stop when max |dy| falls below this
+  double ftol_rel = 1e-6;  ///< ... or chi2 decreases less than this, relatively
+};
+
+struct LsqResult
+{
+  std::vector<double> y;
+  std::vector<double> r;   ///< residuals at y
+  Matrix J;                ///< Jacobian at y
+  double chi2 = 0;
+  int evaluations = 0;
+  int iterations = 0;
+  std::string stop_reason;
+};
+
+/// Forward-difference Jacobian of f at y (r0 = f(y) given); counts evaluations.
+Matrix fd_jacobian(const ResidualFunction& f, const std::vector<double>& y,
+                   const std::vector<double>& r0, double step, int& evaluations);
+
+/// Minimise |f(y)|^2 over lo <= y <= hi from y0. `progress(iteration, chi2, y)`
+/// is called after every accepted step.
+LsqResult levenberg_marquardt(
+    const ResidualFunction& f, std::vector<double> y0, const std::vector<double>& lo,
+    const std::vector<double>& hi, const LsqOptions& o,
+    const std::function<void(int, double, const std::vector<double>&)>& progress = {});
+
+/// Solve the small dense system A x = b (Gaussian elimination with partial
+/// pivoting); false if A is singular to working precision.
+bool solve_dense(Matrix A, std::vector<double> b, std::vector<double>& x);
+} // namespace breastsim::calibration

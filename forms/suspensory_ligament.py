@@ -1,0 +1,22 @@
+"""Suspensory (Cooper's) ligaments: the upper pole of the skin is tethered
+toward its neutral position by a bed of springs,
+
+    E_lig = int_skin k_l/2 w(X) |u|^2 dA,   w(X) = 1 where Z > 0, else 0,
+
+k_l [Pa/m] per unit reference skin area (SPEC.md frame: Z > 0 is the upper
+pole when standing). k_l = 0 reproduces the model without ligaments.
+"""
+from common import Constant, X, domain, dot, ds, u, param
+from ufl import conditional, gt
+
+NAME = "suspensory_ligament"
+DEFAULT_ON = False
+k_l = Constant(domain)
+
+PARAMETERS = {
+    "k_l": param("ligament.k", "Pa/m", 2.0e3, 0.0, 1e12,
+                 "stiffness of the suspensory ligaments tethering the upper-pole skin (Z > 0)"),
+}
+
+upper_pole = conditional(gt(X[2], 0), 1.0, 0.0)
+ENERGY = k_l / 2 * upper_pole * dot(u, u) * ds("skin", "surface_quad")

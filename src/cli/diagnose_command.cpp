@@ -1,0 +1,64 @@
+// `breastsim diagnose RECORDING.json --case CASE.toml`: locate where the
+// simulation and a 3D recording differ, name the physics that was left out,
+// model it, refit and show the fit improve (issue 7, docs/DIAGNOSE.md).
+#include "../log.hpp"
+#include "../output.hpp"
+#include "../viewer.hpp"
+#include "command.hpp"
+#include "diagnose.hpp"
+#include "diagnosis_output.hpp"
+#include "overrides.hpp"
+#include "recording.hpp"
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace breastsim::cli
+{
+Command add_diagnose_command(CLI::App& root)
+{
+  struct Options
+  {
+    std::string recording, case_file, out = "results/diagnosis", candidates;
+    std::vector<std::string> sets;
+    calibration::DiagnoseOptions d;
+  };
+  auto o = std::make_shared<Options>();
+  auto* app = root.add_subcommand("diagnose", "find the physics a model leaves out: where the "
+                                              "simulation and a 3D recording differ, which "
+                                              "candidate term explains it, refit, improvement");
+  app->add_option("recording", o->recording, "3D surface recording (JSON, breastsim-recording/1; "
+                                             "README)")->required();
+  app->add_option("--case", o->case_file, "the current model (TOML): terms on, known parameters, "
+                                          "mesh (default: every default key)");
+  app->add_option("--set", o->sets, "override a case key (repeatable)");
+  app->add_option("--out", o->out, "output folder; replaced on success")->capture_default_str();
+  app->add_option("--fit", o->d.fit, "current-model parameters refitted (mu, lambda, mu_s, lambda_s, "
+                                     "c, rho)")->capture_default_str();
+  app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library "
+                                                 "(default: every candidate whose term is off)");
+  app->add_option("--alpha", o->d.alpha, "false-discovery level of a round")->capture_default_str();
+  app->add_option("--max-rounds", o->d.max_rounds, "rounds of discovery")->capture_default_str();
+  app->add_option("--mesh-ratio", o->d.mesh_ratio, "numerical noise floor: the fitted model is "
+                                                   "also solved on a mesh this many times finer "
+                                                   "(<= 1: off)")->capture_default_str();
+  return {app, [o]()
+          {
+            const Config c = load_case(o->case_file, o->sets);
+            const auto rec = calibration::read_recording(o->recording);
+            std::stringstream ss(o->candidates);
+            for (std::string s; std::getline(ss, s, ',');)
+              if (!s.empty())
+                o->d.candidates.push_back(s);
+            check_picture_tools(MPI_COMM_WORLD); // fail before the solves, not after
+            OutputDir dir(o->out, MPI_COMM_WORLD);
+            const auto d = calibration::diagnose(rec, c, o->d, MPI_COMM_WORLD);
+            calibration::write_diagnosis(dir.path(), d, rec, MPI_COMM_WORLD);
+            dir.commit();
+            if (log::is_root())
+              std::cout << calibration::report_text(d, rec) << "results written to " << o->out
+                        << "/ (diagnosis.json, diagnosis.txt, residual maps, case.diagnosed.toml)\n";
+            return 0;
+          }};
+}
+} // namespace breastsim::cli
