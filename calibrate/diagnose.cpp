@@ -385,6 +385,11 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
     candidate(name); // unknown names: InputError
   if (!(o.alpha > 0 && o.alpha < 0.5))
     throw InputError(fmt::format("--alpha = {} is out of range: allowed (0, 0.5)", o.alpha));
+  if (o.refits < 1 || o.refits > 10)
+    throw InputError(fmt::format("--refits = {} is out of range: allowed [1, 10]", o.refits));
+  if (o.mesh_ratio > 4)
+    throw InputError(fmt::format("--mesh-ratio = {} is out of range: allowed <= 1 (off) or (1, 4]",
+                                 o.mesh_ratio));
   if (o.max_rounds < 1 || o.max_rounds > 10)
     throw InputError(fmt::format("--max-rounds = {} is out of range: allowed [1, 10]", o.max_rounds));
 

@@ -63,6 +63,11 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   nlohmann::json j;
   j["format"] = "breastsim-diagnosis/1";
   j["noise_sigma_mm"] = 1e3 * d.noise_sigma;
+  j["noise_floor"] = nlohmann::json::array();
+  for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
+    j["noise_floor"].push_back({{"posture", rec.postures[p].name},
+                                {"mesh_error_mm", 1e3 * d.mesh_error[p]},
+                                {"sigma_eff_mm", 1e3 * d.sigma_eff[p]}});
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
   j["rounds"] = nlohmann::json::array();
@@ -114,6 +119,10 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
     n += static_cast<int>(p.points.size());
   s += fmt::format("Diagnosis of {} recorded points in {} postures (noise {:.3f} mm)\n", n,
                    rec.postures.size(), 1e3 * d.noise_sigma);
+  for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
+    if (d.mesh_error[p] > 0)
+      s += fmt::format("  numerical noise floor {:<12} mesh error {:.3f} mm -> sigma_eff {:.3f} mm\n",
+                       rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p]);
   for (std::size_t k = 0; k < d.rounds.size(); ++k)
   {
     const Round& r = d.rounds[k];

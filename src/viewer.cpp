@@ -56,8 +56,9 @@ std::filesystem::path viewer_dir()
 {
   if (const char* d = std::getenv("BREASTSIM_VIEWER_DIR"))
     return d;
-  // This file is src/viewer.cpp; the scripts are in src/viewer/.
-  return std::filesystem::path(__FILE__).parent_path() / "viewer";
+  // The source tree's src/viewer (absolute path set by CMake; __FILE__ may be
+  // relative, e.g. under ccache's base_dir).
+  return BREASTSIM_VIEWER_SOURCE_DIR;
 }
 
 std::string viewer_python()

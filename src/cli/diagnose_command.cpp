@@ -39,6 +39,8 @@ Command add_diagnose_command(CLI::App& root)
                                                  "(default: every candidate whose term is off)");
   app->add_option("--alpha", o->d.alpha, "false-discovery level of a round")->capture_default_str();
   app->add_option("--max-rounds", o->d.max_rounds, "rounds of discovery")->capture_default_str();
+  app->add_option("--refits", o->d.refits, "significant candidates refitted per round (the largest "
+                                           "likelihood ratio wins)")->capture_default_str();
   app->add_option("--mesh-ratio", o->d.mesh_ratio, "numerical noise floor: the fitted model is "
                                                    "also solved on a mesh this many times finer "
                                                    "(<= 1: off)")->capture_default_str();
