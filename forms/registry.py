@@ -9,4 +9,5 @@ TERMS = [
     "skin",
     "base_springs",
     "sutures",
+    "tissue_suture",
 ]
