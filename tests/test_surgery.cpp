@@ -70,6 +70,41 @@ TEST(Incision, ResectedVolumeMatchesTheAnalyticRegion)
   }
 }
 
+TEST(Incision, KeptAndResectedMeshesMakeUpTheCap)
+{
+  for (double a : {22.0, 35.0})
+  {
+    Config c = surgery_case();
+    c.set("incision.a_deg", a);
+    const auto cap = cap_spec(c);
+    const auto g = meshes::incision_geometry(cap, incision_spec(c));
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    meshes::TaggedMesh kept_tm, res_tm;
+    kept_tm.order = res_tm.order = 1;
+    if (rank == 0)
+    {
+      kept_tm = meshes::mesh_incised_cap(cap, incision_spec(c), {1, 2, 3, 4, 5});
+      res_tm = meshes::mesh_resected_part(cap, incision_spec(c), {1, 2, 3, 4, 5});
+    }
+    Model kept(to_dolfinx(MPI_COMM_WORLD, kept_tm, 1)), resected(to_dolfinx(MPI_COMM_WORLD, res_tm, 1));
+    // Volumes of the two meshes (half model) against the exact half cap
+    // pi H^2 (3 Rs - H) / 6, and the resected mesh against the grid
+    // quadrature of the analytic region.
+    const double Rs = meshes::sphere_radius(cap.R, cap.H);
+    const double half_cap = M_PI * cap.H * cap.H * (3 * Rs - cap.H) / 6;
+    EXPECT_NEAR((kept.volume() + resected.volume()) / half_cap, 1.0, 0.01) << "a = " << a;
+    std::cout << "a = " << a << " deg: (kept + resected) / cap = " << (kept.volume() + resected.volume()) / half_cap
+              << ", resected mesh / analytic region = " << 2 * resected.volume() / analytic_resected_volume(cap, g)
+              << "\n";
+    EXPECT_NEAR(2 * resected.volume() / analytic_resected_volume(cap, g), 1.0, 0.03) << "a = " << a;
+    // The resected part's cut faces are the kept body's suture faces.
+    EXPECT_NEAR(resected.area("suture_abd") / kept.area("suture_abd"), 1.0, 0.01) << "a = " << a;
+    EXPECT_NEAR(resected.area("suture_bcd") / kept.area("suture_bcd"), 1.0, 0.01) << "a = " << a;
+    EXPECT_GT(resected.area("skin"), 0.0);
+  }
+}
+
 TEST(Incision, SutureFacesLieOnTheirPlanesWithTheAnalyticAreas)
 {
   Config c = surgery_case(0.004); // P1 faces: O(h^2) chord error along the skin
