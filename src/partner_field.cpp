@@ -37,6 +37,15 @@ double outside(const std::array<double, 3>& xi)
   return std::max({0.0, -xi[0], -xi[1], -xi[2], xi[0] + xi[1] + xi[2] - 1});
 }
 
+/// The case-file key of the UFL Constant `name` (the name if it has none).
+std::string key_of(const std::string& name)
+{
+  for (const auto& p : generated::parameters())
+    if (p.name == name && !p.key.empty())
+      return "'" + p.key + "'";
+  return "'" + name + "'";
+}
+
 void destroy(Mat& A)
 {
   if (A)
@@ -46,9 +55,11 @@ void destroy(Mat& A)
 } // namespace
 
 Mat build_partner_interpolation(const fem::FunctionSpace& V,
-                                const mesh::MeshTags<std::int32_t>& facets, int tag_a, int tag_b,
-                                const AffineMap& g, const std::string& term)
+                                const mesh::MeshTags<std::int32_t>& facets,
+                                const generated::PartnerInfo& info, const AffineMap& g)
 {
+  const std::string& term = info.term;
+  const int tag_a = generated::tag(info.face_a), tag_b = generated::tag(info.face_b);
   auto mesh = V.mesh();
   const MPI_Comm comm = mesh->comm();
   int size;
@@ -62,9 +73,10 @@ Mat build_partner_interpolation(const fem::FunctionSpace& V,
   auto f_to_c = topology.connectivity(tdim - 1, tdim);
   const auto faces_a = facets_with(facets, tag_a), faces_b = facets_with(facets, tag_b);
   if (faces_a.empty() || faces_b.empty())
-    throw InputError(fmt::format("energy term '{}': the mesh has no facets tagged {} (face A: {} "
-                                 "facets, face B: {} facets)", term,
-                                 faces_a.empty() ? tag_a : tag_b, faces_a.size(), faces_b.size()));
+    throw InputError(fmt::format("energy term '{}': the mesh has no facets tagged {} (face A = {} ({}): {} "
+                                 "facets, face B = {} ({}): {} facets); tag the two faces to sew",
+                                 term, faces_a.empty() ? info.face_a : info.face_b, info.face_a, tag_a,
+                                 faces_a.size(), info.face_b, tag_b, faces_b.size()));
 
   // Candidate cells: those touching face B, with their bounding boxes.
   std::vector<std::int32_t> cells;
@@ -151,10 +163,10 @@ Mat build_partner_interpolation(const fem::FunctionSpace& V,
     }
     if (best > 1e-3)
       throw InputError(fmt::format(
-          "energy term '{}': the map g sends the node ({:.6g}, {:.6g}, {:.6g}) m of face A (tag {}) to "
-          "({:.6g}, {:.6g}, {:.6g}) m, which is in no cell touching face B (tag {}); check the map "
-          "keys (map_matrix, map_shift)", term, X[3 * i], X[3 * i + 1], X[3 * i + 2], tag_a, y[0], y[1],
-          y[2], tag_b));
+          "energy term '{}': the map g sends the node ({:.6g}, {:.6g}, {:.6g}) m of face A ({}) to "
+          "({:.6g}, {:.6g}, {:.6g}) m, which is in no cell touching face B ({}); check the map "
+          "keys {} and {}", term, X[3 * i], X[3 * i + 1], X[3 * i + 2], info.face_a, y[0], y[1],
+          y[2], info.face_b, key_of(info.map_matrix), key_of(info.map_shift)));
     // Row 3 i + c: u_c(y) = sum_j phi_j(xi) u_c(node j), the element basis at xi
     // (the geometry and u are Lagrange elements of the same degree: local
     // node j is the same point for both).
@@ -206,8 +218,7 @@ void PartnerField::update(const fem::Function<T>& u, const mesh::MeshTags<std::i
   if (!_P || g != _map)
   {
     destroy(_P);
-    _P = build_partner_interpolation(*_V, facets, generated::tag(_info.face_a),
-                                     generated::tag(_info.face_b), g, _info.term);
+    _P = build_partner_interpolation(*_V, facets, _info, g);
     _map = g;
   }
   // w = P u

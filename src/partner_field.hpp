@@ -30,13 +30,14 @@ using T = PetscScalar;
 using AffineMap = std::array<double, 12>;
 
 /// Interpolation matrix P (n x n, n = number of displacement unknowns) of
-/// the partner of a term: rows of the nodes of face `tag_a`, evaluating u at
-/// g(X_i) inside the cells touching face `tag_b`. Caller owns. Throws
-/// InputError naming `term` if a face is empty, a mapped node lies in no such
-/// cell, or the communicator has more than one rank.
+/// the partner `info`: rows of the nodes of face_a, evaluating u at g(X_i)
+/// inside the cells touching face_b. Caller owns. Throws InputError naming
+/// the term if a face is empty, a mapped node lies in no such cell (more than
+/// 1e-3 outside in reference coordinates), or the communicator has more than
+/// one rank.
 Mat build_partner_interpolation(const dolfinx::fem::FunctionSpace& V,
-                                const dolfinx::mesh::MeshTags<std::int32_t>& facets, int tag_a,
-                                int tag_b, const AffineMap& g, const std::string& term);
+                                const dolfinx::mesh::MeshTags<std::int32_t>& facets,
+                                const generated::PartnerInfo& info, const AffineMap& g);
 
 class PartnerField
 {

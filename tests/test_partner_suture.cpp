@@ -380,3 +380,19 @@ TEST(TissueSuture, MeshWithoutTheFacesIsRefusedByName)
     EXPECT_NE(std::string(e.what()).find("tissue_suture"), std::string::npos) << e.what();
   }
 }
+
+// A map that sends face A away from face B is refused, naming the map keys.
+TEST(TissueSuture, MapMissingFaceBIsRefusedByName)
+{
+  auto m = block_model(1, 0.004);
+  m->set_parameter("tissue_map_shift", {0.05, 0.0, 0.0});
+  try
+  {
+    m->energy();
+    ADD_FAILURE() << "accepted a map that misses face B";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("tissue_suture.map_shift"), std::string::npos) << e.what();
+  }
+}
