@@ -19,21 +19,20 @@ double since(clock_type::time_point t0)
   return std::chrono::duration<double>(clock_type::now() - t0).count();
 }
 
-/// The mesh and its facet tags (no field) as XDMF.
-void write_mesh(const TaggedDolfinxMesh& m, const std::filesystem::path& file)
-{
-  dolfinx::io::XDMFFile f(m.mesh->comm(), file.string(), "w");
-  f.write_mesh(*m.mesh);
-  m.mesh->topology_mutable().create_connectivity(2, 3);
-  f.write_meshtags(*m.facets, "/Xdmf/Domain/Grid[@Name='" + m.mesh->name + "']/Geometry");
-}
-
 std::array<int, 5> suture_tags()
 {
   return {generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"),
           generated::tag("suture_abd"), generated::tag("suture_bcd")};
 }
 } // namespace
+
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file)
+{
+  dolfinx::io::XDMFFile f(m.mesh->comm(), file.string(), "w");
+  f.write_mesh(*m.mesh);
+  m.mesh->topology_mutable().create_connectivity(2, 3);
+  f.write_meshtags(*m.facets, "/Xdmf/Domain/Grid[@Name='" + m.mesh->name + "']/Geometry");
+}
 
 meshes::IncisionSpec incision_spec(const Config& c)
 {
@@ -130,7 +129,7 @@ SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Com
     Model res(resected_mesh, Constraints{false, false});
     r.resected_volume_mesh = 2 * res.volume();
     if (c.flag("output.xdmf"))
-      write_mesh(resected_mesh, dir.path() / "resected.xdmf");
+      write_mesh_xdmf(resected_mesh, dir.path() / "resected.xdmf");
   }
 
   // 1. Pre-operative breast.

@@ -33,6 +33,8 @@ struct SurgeryResult
 };
 
 meshes::IncisionSpec incision_spec(const Config& c);
+/// Write a mesh and its facet tags (no field) as XDMF (collective).
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
 
 /// Close the incision of a model whose mesh has the suture tags: closure
 /// stepping without gravity, then the penalty is raised x10 until the
