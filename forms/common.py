@@ -19,6 +19,8 @@ DEGREE = int(os.environ.get("BREASTSIM_DEGREE", "1"))
 # Boundary tags (facet markers) shared with the C++ side through the
 # generated registry header.
 TAGS = {"base": 1, "skin": 2, "symmetry": 3, "suture_abd": 4, "suture_bcd": 5}
+# The two faces of the general tissue-to-tissue suture (forms/tissue_suture.py).
+TAGS.update({"suture_a": 6, "suture_b": 7})
 
 # Explicit quadrature degrees (the automatic estimate explodes for the
 # membrane's inv/ln/sqrt). P1: F is cell-wise constant. P2: F is linear;

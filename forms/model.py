@@ -11,6 +11,7 @@ import importlib
 from ufl import Constant as _Constant
 from ufl import Coefficient as _Coefficient
 from ufl import derivative as _derivative
+from ufl.algorithms import extract_coefficients as _extract_coefficients
 
 from common import domain, u, v, du, J, dx, DEGREE, TAGS, QDEG  # noqa: F401
 from registry import TERMS
@@ -55,6 +56,40 @@ for _m in _modules:
     globals()["jacobian_" + _name] = _derivative(globals()["residual_" + _name], u, du)
     forms += [globals()["energy_" + _name], globals()["residual_" + _name],
               globals()["jacobian_" + _name]]
+
+# Partner fields (see forms/tissue_suture.py): a term may declare
+# PARTNER = dict(coefficient=..., face_a=..., face_b=..., map_matrix=..., map_shift=...):
+# its Coefficient w (in the space of u) is set by the C++ side to w = P u, the
+# values of u at the images g(X) = G X + t of the nodes of face_a. The term's
+# partial derivatives in w are compiled here; C++ applies the chain rule
+#   dE/du = E_u + P^T E_w,  d2E/du2 = E_uu + E_uw P + P^T E_wu + P^T E_ww P.
+# A partner Coefficient belongs to its term alone (so the total's w-derivative
+# is on_term times the term's, and no cross terms between partners arise).
+PARTNERS = {}
+for _m in _modules:
+    _p = getattr(_m, "PARTNER", None)
+    if _p is None:
+        continue
+    _w = getattr(_m, _p["coefficient"], None)
+    if not isinstance(_w, _Coefficient):
+        raise RuntimeError(f"term '{_m.NAME}': PARTNER coefficient '{_p['coefficient']}' "
+                           "is not a module-level Coefficient")
+    for _name in ("face_a", "face_b"):
+        if _p[_name] not in TAGS:
+            raise RuntimeError(f"term '{_m.NAME}': PARTNER {_name} '{_p[_name]}' is not a tag")
+    for _name in ("map_matrix", "map_shift"):
+        if _p[_name] not in _m.PARAMETERS:
+            raise RuntimeError(f"term '{_m.NAME}': PARTNER {_name} '{_p[_name]}' is not a parameter")
+    for _o in _modules:
+        if _o is not _m and _w in _extract_coefficients(_o.ENERGY):
+            raise RuntimeError(f"partner coefficient '{_p['coefficient']}' of term '{_m.NAME}' "
+                               f"is also used by term '{_o.NAME}'")
+    PARTNERS[_m.NAME] = dict(_p)
+    _Ew = _derivative(_m.ENERGY, _w, v)
+    globals()["partner_residual_" + _m.NAME] = _Ew
+    globals()["partner_jacobian_uw_" + _m.NAME] = _derivative(_derivative(_m.ENERGY, u, v), _w, du)
+    globals()["partner_jacobian_ww_" + _m.NAME] = _derivative(_Ew, _w, du)
+    forms += [globals()["partner_" + _k + "_" + _m.NAME] for _k in ("residual", "jacobian_uw", "jacobian_ww")]
 
 # det F at the reference-cell nodes of the element (vertices and, for P2,
 # edge midpoints): used to refuse inverted elements.

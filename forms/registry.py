@@ -11,4 +11,5 @@ TERMS = [
     "sutures",
     "suspensory_ligament",
     "gland_core",
+    "tissue_suture",
 ]

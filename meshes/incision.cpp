@@ -87,36 +87,49 @@ IncisionGeometry incision_geometry(const HalfCapSpec& cap, const IncisionSpec& i
   return g;
 }
 
-TaggedMesh mesh_incised_cap(const HalfCapSpec& cap, const IncisionSpec& inc,
-                            const std::array<int, 5>& tags, double* cad_volume)
+namespace
+{
+/// The neutral half cap as an OCC volume (the sphere cut to x >= 0, y >= 0)
+/// and the two half-space boxes {n1 . p < c1}, {n2 . p < c2} of the cuts.
+struct CutBodies
+{
+  gmsh::vectorpair body;
+  int k1, k2;
+};
+
+CutBodies cap_and_cuts(const HalfCapSpec& cap, const IncisionGeometry& g)
 {
   namespace occ = gmsh::model::occ;
-  const IncisionGeometry g = incision_geometry(cap, inc);
-  GmshSession session;
   const double Rs = sphere_radius(cap.R, cap.H), yc = cap.H - Rs, L = 8 * Rs;
   const int sphere = occ::addSphere(0, yc, 0, Rs);
   const int quarter = occ::addBox(0, 0, -L, L, L, 2 * L);
-  gmsh::vectorpair body, tmp;
+  CutBodies b;
   std::vector<gmsh::vectorpair> map;
-  occ::intersect({{3, sphere}}, {{3, quarter}}, body, map);
-  const int k1 = half_space_box(g.n1, g.c1, L);
-  const int k2 = half_space_box(g.n2, g.c2, L);
-  occ::cut(body, {{3, k1}, {3, k2}}, tmp, map);
-  occ::synchronize();
-  if (tmp.empty())
-    throw InputError("the incision removes the whole breast: check incision.a_deg, incision.s, incision.h, incision.d");
+  occ::intersect({{3, sphere}}, {{3, quarter}}, b.body, map);
+  b.k1 = half_space_box(g.n1, g.c1, L);
+  b.k2 = half_space_box(g.n2, g.c2, L);
+  return b;
+}
 
-  std::vector<int> vols, base, skin, sym, abd, bcd;
+/// Physical groups of the volumes `vols` (tag 1) and of their boundary faces:
+/// base (y = 0), skin (curved), symmetry (x = 0), on P1, on P2, with the tag
+/// values `tags` in that order. Returns the CAD volume and whether faces on
+/// P1 and P2 exist.
+double tag_faces(const gmsh::vectorpair& vols, const IncisionGeometry& g, double Rs,
+                 const std::array<int, 5>& tags, bool& on_p1, bool& on_p2)
+{
+  namespace occ = gmsh::model::occ;
+  std::vector<int> ids, base, skin, sym, abd, bcd;
   double volume = 0;
-  for (auto [d, t] : tmp)
+  for (auto [d, t] : vols)
   {
-    vols.push_back(t);
+    ids.push_back(t);
     double m;
     occ::getMass(d, t, m);
     volume += m;
   }
   gmsh::vectorpair faces;
-  gmsh::model::getBoundary(tmp, faces, false, false, false);
+  gmsh::model::getBoundary(vols, faces, false, false, false);
   const double tol = 1e-6 * Rs;
   for (auto [d, t] : faces)
   {
@@ -139,20 +152,69 @@ TaggedMesh mesh_incised_cap(const HalfCapSpec& cap, const IncisionSpec& inc,
     else
       throw std::runtime_error("incision: unclassified planar face");
   }
-  gmsh::model::addPhysicalGroup(3, vols, 1);
+  gmsh::model::addPhysicalGroup(3, ids, 1);
   const std::vector<int>* groups[5] = {&base, &skin, &sym, &abd, &bcd};
   for (int i = 0; i < 5; ++i)
     if (!groups[i]->empty())
       gmsh::model::addPhysicalGroup(2, *groups[i], tags[i]);
-  if (abd.empty() || bcd.empty())
-    throw InputError("the incision planes miss the breast (no cut face on P1 or P2): check incision.a_deg, "
-                     "incision.h, incision.d");
+  on_p1 = !abd.empty();
+  on_p2 = !bcd.empty();
+  return volume;
+}
+
+void set_mesh_options(const HalfCapSpec& cap)
+{
   gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * cap.mesh_size);
   gmsh::option::setNumber("Mesh.MeshSizeMax", cap.mesh_size);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.Algorithm3D", 1);
   gmsh::option::setNumber("Mesh.Optimize", 1);
   gmsh::option::setNumber("General.NumThreads", 1);
+}
+} // namespace
+
+TaggedMesh mesh_incised_cap(const HalfCapSpec& cap, const IncisionSpec& inc,
+                            const std::array<int, 5>& tags, double* cad_volume)
+{
+  namespace occ = gmsh::model::occ;
+  const IncisionGeometry g = incision_geometry(cap, inc);
+  GmshSession session;
+  auto cut = cap_and_cuts(cap, g);
+  gmsh::vectorpair kept;
+  std::vector<gmsh::vectorpair> map;
+  occ::cut(cut.body, {{3, cut.k1}, {3, cut.k2}}, kept, map);
+  occ::synchronize();
+  if (kept.empty())
+    throw InputError("the incision removes the whole breast: check incision.a_deg, incision.s, incision.h, incision.d");
+  bool p1 = false, p2 = false;
+  const double volume = tag_faces(kept, g, sphere_radius(cap.R, cap.H), tags, p1, p2);
+  if (!p1 || !p2)
+    throw InputError("the incision planes miss the breast (no cut face on P1 or P2): check incision.a_deg, "
+                     "incision.h, incision.d");
+  set_mesh_options(cap);
+  if (cad_volume)
+    *cad_volume = volume;
+  return extract_tagged_mesh(cap.order, cap.refinements);
+}
+
+TaggedMesh mesh_resected_part(const HalfCapSpec& cap, const IncisionSpec& inc,
+                              const std::array<int, 5>& tags, double* cad_volume)
+{
+  namespace occ = gmsh::model::occ;
+  const IncisionGeometry g = incision_geometry(cap, inc);
+  GmshSession session;
+  auto cut = cap_and_cuts(cap, g);
+  // The resected part: the cap inside the union of the two half-spaces.
+  gmsh::vectorpair cuts, resected;
+  std::vector<gmsh::vectorpair> map;
+  occ::fuse({{3, cut.k1}}, {{3, cut.k2}}, cuts, map);
+  occ::intersect(cut.body, cuts, resected, map);
+  occ::synchronize();
+  if (resected.empty())
+    throw InputError("the incision removes nothing: check incision.a_deg, incision.s, incision.h, incision.d");
+  bool p1 = false, p2 = false;
+  const double volume = tag_faces(resected, g, sphere_radius(cap.R, cap.H), tags, p1, p2);
+  set_mesh_options(cap);
   if (cad_volume)
     *cad_volume = volume;
   return extract_tagged_mesh(cap.order, cap.refinements);

@@ -40,4 +40,11 @@ IncisionGeometry incision_geometry(const HalfCapSpec& cap, const IncisionSpec& i
 /// (half-model) volume from the CAD.
 TaggedMesh mesh_incised_cap(const HalfCapSpec& cap, const IncisionSpec& inc,
                             const std::array<int, 5>& tags, double* cad_volume = nullptr);
+
+/// Mesh the resected part (the cap inside {n1 . p < c1} or {n2 . p < c2}, the
+/// complement of the remaining body): physical surface groups as above (its
+/// faces on P1 and P2 get the suture_abd / suture_bcd values). Also returns
+/// its (half-model) volume from the CAD.
+TaggedMesh mesh_resected_part(const HalfCapSpec& cap, const IncisionSpec& inc,
+                              const std::array<int, 5>& tags, double* cad_volume = nullptr);
 } // namespace breastsim::meshes

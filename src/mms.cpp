@@ -109,11 +109,15 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
 
   std::map<std::string, std::shared_ptr<const fem::Constant<T>>> cmap(constants.begin(),
                                                                        constants.end());
+  // Partner fields (forms/model.py) belong to terms that are off here: zero.
+  std::map<std::string, std::shared_ptr<const fem::Function<T>>> coefficients = {{"u", u}};
+  for (const auto& p : generated::partners())
+    coefficients[p.coefficient] = std::make_shared<fem::Function<T>>(V);
   auto create = [&](ufcx_form* f, int rank_)
   {
     std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
     return std::make_shared<fem::Form<T>>(fem::create_form<T>(
-        *f, spaces, {{"u", u}}, cmap, {{fem::IntegralType::exterior_facet, m.facets.get()}},
+        *f, spaces, coefficients, cmap, {{fem::IntegralType::exterior_facet, m.facets.get()}},
         m.mesh));
   };
   auto R = create(patch ? uf.patch_residual : uf.residual, 1), Jf = create(uf.jacobian, 2);

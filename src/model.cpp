@@ -71,6 +71,16 @@ Model::Model(TaggedDolfinxMesh mesh, Constraints constraints)
         std::vector<T>{0, 0, 0}, std::move(dofs), _V));
   }
 
+  // Partner fields: their Coefficients must exist before any form is created.
+  for (const auto& p : generated::partners())
+    _partners.push_back(std::make_shared<PartnerField>(p, _V));
+  for (auto& p : _partners)
+  {
+    const std::string& t = p->info().term;
+    p->set_forms(create("partner_residual_" + t, 1), create("partner_jacobian_uw_" + t, 2),
+                 create("partner_jacobian_ww_" + t, 2));
+  }
+
   _volume = create("volume", 0);
   forms("");
 }
@@ -83,8 +93,11 @@ std::shared_ptr<fem::Form<T>> Model::create(const std::string& name, int rank)
   std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants(_constants.begin(),
                                                                             _constants.end());
   std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, _V);
+  std::map<std::string, std::shared_ptr<const fem::Function<T>>> coefficients = {{"u", _u}};
+  for (const auto& p : _partners)
+    coefficients[p->info().coefficient] = p->field();
   return std::make_shared<fem::Form<T>>(fem::create_form<T>(
-      *f, spaces, {{"u", _u}}, constants,
+      *f, spaces, coefficients, constants,
       {{fem::IntegralType::exterior_facet, _mesh.facets.get()}}, _mesh.mesh));
 }
 
@@ -165,8 +178,43 @@ std::int64_t Model::num_dofs() const
   return _V->dofmap()->index_map->size_global() * _V->dofmap()->index_map_bs();
 }
 
+double Model::partner_weight(const PartnerField& p, const std::string& term) const
+{
+  if (term.empty())
+    return term_on(p.info().term) ? _constants.at("on_" + p.info().term)->value[0] : 0.0;
+  return term == p.info().term ? 1.0 : 0.0;
+}
+
+AffineMap Model::partner_map(const PartnerField& p) const
+{
+  const auto G = parameter(p.info().map_matrix), t = parameter(p.info().map_shift);
+  AffineMap g;
+  std::copy(G.begin(), G.end(), g.begin());
+  std::copy(t.begin(), t.end(), g.begin() + 9);
+  return g;
+}
+
+void Model::update_partners(const std::string& term)
+{
+  for (auto& p : _partners)
+    if (partner_weight(*p, term) != 0.0)
+      p->update(*_u, *_mesh.facets, partner_map(*p));
+}
+
+const PartnerField& Model::partner(const std::string& term)
+{
+  for (auto& p : _partners)
+    if (p->info().term == term)
+    {
+      p->update(*_u, *_mesh.facets, partner_map(*p));
+      return *p;
+    }
+  throw InputError("energy term '" + term + "' has no partner field");
+}
+
 double Model::energy(const std::string& term)
 {
+  update_partners(term);
   double local = fem::assemble_scalar(*forms(term).energy), global = 0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
   return global;
@@ -220,6 +268,7 @@ void Model::set_displacement(Vec x)
 void Model::assemble_residual(Vec b, const std::string& term)
 {
   FormSet& f = forms(term);
+  update_partners(term);
   Vec b_local;
   VecGhostGetLocalForm(b, &b_local);
   VecSet(b_local, 0.0);
@@ -227,6 +276,10 @@ void Model::assemble_residual(Vec b, const std::string& term)
   fem::petsc::assemble_vector(b, *f.residual);
   VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
   VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
+  // Partner fields: the chain rule through w = P u, b += on_k P^T E_w.
+  for (auto& p : _partners)
+    if (const double s = partner_weight(*p, term); s != 0.0)
+      p->add_gradient(b, s);
   // Constrained rows: b = u - g (zero while u satisfies the constraint).
   Vec ux = la::petsc::create_vector_wrap(*_u->x());
   fem::petsc::set_bc(b, _bcs, ux, -1.0);
@@ -246,8 +299,37 @@ double Model::residual_norm(const std::string& term)
 void Model::assemble_jacobian(Mat A, const std::string& term)
 {
   FormSet& f = forms(term);
+  update_partners(term);
   MatZeroEntries(A);
   fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, _bcs);
+  // Partner fields: A += on_k (E_uw P + P^T E_wu + P^T E_ww P), constrained
+  // rows and columns excluded; added before the first final assembly so that
+  // PETSc keeps these entries in the matrix structure. Entries outside the
+  // preallocation (a matrix created while the term was off) are allocated.
+  for (auto& p : _partners)
+  {
+    const double s = partner_weight(*p, term);
+    if (s == 0.0)
+      continue;
+    Mat K = p->hessian_coupling(constrained_markers());
+    MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
+    PetscInt r0, r1;
+    MatGetOwnershipRange(K, &r0, &r1);
+    std::vector<PetscScalar> vals;
+    for (PetscInt r = r0; r < r1; ++r)
+    {
+      PetscInt n;
+      const PetscInt* cols;
+      const PetscScalar* v;
+      MatGetRow(K, r, &n, &cols, &v);
+      vals.assign(v, v + n);
+      for (auto& x : vals)
+        x *= s;
+      MatSetValues(A, 1, &r, n, cols, vals.data(), ADD_VALUES);
+      MatRestoreRow(K, r, &n, &cols, &v);
+    }
+    MatDestroy(&K);
+  }
   MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
   MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
   fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *_V, _bcs);
@@ -255,11 +337,50 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
   MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
 }
 
+std::vector<std::int8_t> Model::constrained_markers() const
+{
+  const auto& map = *_V->dofmap()->index_map;
+  std::vector<std::int8_t> marker(3 * (map.size_local() + map.num_ghosts()), 0);
+  for (const auto& bc : _bcs)
+    bc->mark_dofs(marker);
+  return marker;
+}
+
 Mat Model::create_matrix()
 {
-  Mat A = fem::petsc::create_matrix(*forms("").jacobian, "aij");
-  //MatSetBlockSize(A, 3);
-  return A;
+  bool partners = false;
+  for (auto& p : _partners)
+    partners = partners || partner_weight(*p, "") != 0.0;
+  if (!partners)
+    return fem::petsc::create_matrix(*forms("").jacobian, "aij");
+  // The pattern of the Jacobian form plus the partner couplings
+  // (E_uw P + P^T E_wu + P^T E_ww P: face A's cells with the cells holding g(X)).
+  update_partners("");
+  la::SparsityPattern pattern = fem::create_sparsity_pattern(*forms("").jacobian);
+  for (auto& p : _partners)
+  {
+    if (partner_weight(*p, "") == 0.0)
+      continue;
+    Mat K = p->hessian_coupling({});
+    PetscInt r0, r1;
+    MatGetOwnershipRange(K, &r0, &r1);
+    for (PetscInt r = r0; r < r1; ++r)
+    {
+      PetscInt n;
+      const PetscInt* cols;
+      MatGetRow(K, r, &n, &cols, nullptr);
+      std::vector<std::int32_t> row = {static_cast<std::int32_t>(r / 3)}, blocks;
+      for (PetscInt k = 0; k < n; ++k)
+        blocks.push_back(static_cast<std::int32_t>(cols[k] / 3));
+      MatRestoreRow(K, r, &n, &cols, nullptr);
+      std::sort(blocks.begin(), blocks.end());
+      blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+      pattern.insert(row, blocks); // serial (partner fields): local = global indices
+    }
+    MatDestroy(&K);
+  }
+  pattern.assemble();
+  return la::petsc::create_matrix(_mesh.mesh->comm(), pattern, "aij");
 }
 
 Vec Model::create_vector() const

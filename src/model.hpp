@@ -4,6 +4,7 @@
 // constraints, and assembly of energy, residual and Jacobian. Nothing here
 // names a specific material: parameters and terms come from forms/.
 #include "mesh_from_gmsh.hpp"
+#include "partner_field.hpp"
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/DirichletBC.h>
@@ -19,8 +20,6 @@
 
 namespace breastsim
 {
-using T = PetscScalar;
-
 /// Kinematic constraints of the model.
 struct Constraints
 {
@@ -83,12 +82,25 @@ public:
   /// Copy a PETSc vector of the displacement layout into u (ghosts updated).
   void set_displacement(Vec x);
 
+  // -- Partner fields (src/partner_field.hpp) --
+  /// The partner field of a term that declares one (forms/model.py PARTNERS),
+  /// brought up to date (P built if needed, w = P u). Throws if `term` has none.
+  const PartnerField& partner(const std::string& term);
+
 private:
   struct FormSet
   {
     std::shared_ptr<dolfinx::fem::Form<T>> energy, residual, jacobian;
   };
   FormSet& forms(const std::string& term);
+  /// Weight of the partner's term in the total (term "") or in `term`: its
+  /// switch, 1 for the term itself, 0 otherwise.
+  double partner_weight(const PartnerField& p, const std::string& term) const;
+  /// Bring the partners that `term` needs up to date (w = P u).
+  void update_partners(const std::string& term);
+  AffineMap partner_map(const PartnerField& p) const;
+  /// 1 for every dof (unblocked, local) fixed by a Dirichlet condition.
+  std::vector<std::int8_t> constrained_markers() const;
   std::shared_ptr<dolfinx::fem::Form<T>> create(const std::string& name, int rank);
 
   TaggedDolfinxMesh _mesh;
@@ -100,5 +112,6 @@ private:
   std::shared_ptr<dolfinx::fem::Form<T>> _volume;
   std::shared_ptr<dolfinx::fem::Expression<T>> _detF; // det F at the element nodes
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> _bcs;
+  std::vector<std::shared_ptr<PartnerField>> _partners;
 };
 } // namespace breastsim

@@ -6,6 +6,7 @@
 #include "reference_reset.hpp"
 #include "viewer.hpp"
 #include <chrono>
+#include <dolfinx/io/XDMFFile.h>
 #include <fmt/format.h>
 
 namespace breastsim
@@ -24,6 +25,14 @@ std::array<int, 5> suture_tags()
           generated::tag("suture_abd"), generated::tag("suture_bcd")};
 }
 } // namespace
+
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file)
+{
+  dolfinx::io::XDMFFile f(m.mesh->comm(), file.string(), "w");
+  f.write_mesh(*m.mesh);
+  m.mesh->topology_mutable().create_connectivity(2, 3);
+  f.write_meshtags(*m.facets, "/Xdmf/Domain/Grid[@Name='" + m.mesh->name + "']/Geometry");
+}
 
 meshes::IncisionSpec incision_spec(const Config& c)
 {
@@ -94,16 +103,34 @@ SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Com
   auto pre_mesh = build_neutral_mesh(c, comm);
   meshes::TaggedMesh cut;
   cut.order = cap.order;
+  meshes::TaggedMesh resected = cut;
   if (rank == 0)
+  {
     cut = meshes::mesh_incised_cap(cap, inc, suture_tags());
+    resected = meshes::mesh_resected_part(cap, inc, suture_tags());
+  }
   auto cut_mesh = to_dolfinx(comm, cut, cap.order);
+  auto resected_mesh = to_dolfinx(comm, resected, cap.order);
   r.seconds_mesh = since(t0);
   r.quality_pre = mesh_quality(*pre_mesh.mesh);
   r.quality_incised = mesh_quality(*cut_mesh.mesh);
+  r.quality_resected = mesh_quality(*resected_mesh.mesh);
+  // Exact cap volume pi H^2 (3 Rs - H) / 3 (full breast), for the balance
+  // kept + resected = cap in the report.
+  const double Rs = meshes::sphere_radius(cap.R, cap.H);
+  r.cap_volume = M_PI * cap.H * cap.H * (3 * Rs - cap.H) / 3;
 
   OutputDir dir(out, comm);
   std::filesystem::create_directories(dir.path() / "preop");
   std::filesystem::create_directories(dir.path() / "postop");
+
+  // 0. The resected tissue: its mesh (with the facet tags) and volume.
+  {
+    Model res(resected_mesh, Constraints{false, false});
+    r.resected_volume_mesh = 2 * res.volume();
+    if (c.flag("output.xdmf"))
+      write_mesh_xdmf(resected_mesh, dir.path() / "resected.xdmf");
+  }
 
   // 1. Pre-operative breast.
   t0 = clock_type::now();
@@ -157,8 +184,11 @@ nlohmann::json to_json(const SurgeryResult& r)
   j["volume_pre_m3"] = r.volume_pre;
   j["volume_remaining_m3"] = r.volume_remaining;
   j["resected_volume_m3"] = r.resected_volume;
+  j["resected_volume_mesh_m3"] = r.resected_volume_mesh;
+  j["cap_volume_m3"] = r.cap_volume;
   j["mesh_pre"] = to_json(r.quality_pre);
   j["mesh_incised"] = to_json(r.quality_incised);
+  j["mesh_resected"] = to_json(r.quality_resected);
   j["new_nipple_neutral_m"] = r.new_nipple_neutral;
   j["suture"] = {{"max_gap_m", r.suture.max_gap}, {"k_final_Pa_per_m", r.suture.k_final},
                  {"closure_steps", r.suture.closure.steps},
@@ -178,10 +208,10 @@ nlohmann::json to_json(const SurgeryResult& r)
 
 std::string surgery_table(const SurgeryResult& r)
 {
-  std::string s = fmt::format("resected volume {:.1f} cm^3 (of {:.1f}), largest suture gap {:.4f} mm, "
-                              "suture stiffness {:.3g} Pa/m\n",
-                              1e6 * r.resected_volume, 1e6 * r.volume_pre, 1e3 * r.suture.max_gap,
-                              r.suture.k_final);
+  std::string s = fmt::format("resected volume {:.1f} cm^3 (of {:.1f}; resected-tissue mesh {:.1f} cm^3), "
+                              "largest suture gap {:.4f} mm, suture stiffness {:.3g} Pa/m\n",
+                              1e6 * r.resected_volume, 1e6 * r.volume_pre, 1e6 * r.resected_volume_mesh,
+                              1e3 * r.suture.max_gap, r.suture.k_final);
   s += fmt::format("{:<12} {:>22} {:>22} {:>9} {:>9} {:>9} {:>9}\n", "posture", "nipple pre y,z [mm]",
                    "nipple post y,z [mm]", "proj pre", "proj post", "zmin pre", "zmin post");
   for (std::size_t i = 0; i < r.pre.size() && i < r.post.size(); ++i)

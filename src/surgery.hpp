@@ -22,8 +22,10 @@ struct SurgeryResult
   meshes::IncisionGeometry incision;
   double volume_pre = 0;        ///< neutral volume before surgery, full breast [m^3]
   double volume_remaining = 0;  ///< neutral volume of the remaining body, full breast [m^3]
-  double resected_volume = 0;   ///< full breast [m^3]
-  MeshQuality quality_pre, quality_incised;
+  double resected_volume = 0;   ///< full breast [m^3]: volume_pre - volume_remaining
+  double resected_volume_mesh = 0; ///< full breast [m^3], from the mesh of the resected part
+  double cap_volume = 0;        ///< exact volume of the neutral cap, full breast [m^3]
+  MeshQuality quality_pre, quality_incised, quality_resected;
   std::array<double, 3> new_nipple_neutral{}; ///< A after suturing (new reference)
   SutureReport suture;
   std::vector<PostureResult> pre, post;
@@ -31,6 +33,8 @@ struct SurgeryResult
 };
 
 meshes::IncisionSpec incision_spec(const Config& c);
+/// Write a mesh and its facet tags (no field) as XDMF (collective).
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
 
 /// Close the incision of a model whose mesh has the suture tags: closure
 /// stepping without gravity, then the penalty is raised x10 until the

@@ -8,7 +8,9 @@
 #include "surgery.hpp"
 #include <gtest/gtest.h>
 #include <gmsh.h>
+#include <fstream>
 #include <random>
+#include <unistd.h>
 
 using namespace breastsim;
 
@@ -67,6 +69,72 @@ TEST(Incision, ResectedVolumeMatchesTheAnalyticRegion)
     EXPECT_NEAR((cap_volume - 2 * cad) / expected, 1.0, 0.01) << "a = " << a;
     EXPECT_NEAR(2 * (pre->volume() - cut.volume()) / expected, 1.0, 0.03) << "a = " << a;
     EXPECT_GT(expected, 0.05 * cap_volume);
+  }
+}
+
+TEST(Incision, KeptAndResectedMeshesMakeUpTheCap)
+{
+  for (double a : {22.0, 35.0})
+  {
+    Config c = surgery_case();
+    c.set("incision.a_deg", a);
+    const auto cap = cap_spec(c);
+    const auto g = meshes::incision_geometry(cap, incision_spec(c));
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    meshes::TaggedMesh kept_tm, res_tm;
+    kept_tm.order = res_tm.order = 1;
+    if (rank == 0)
+    {
+      kept_tm = meshes::mesh_incised_cap(cap, incision_spec(c), {1, 2, 3, 4, 5});
+      res_tm = meshes::mesh_resected_part(cap, incision_spec(c), {1, 2, 3, 4, 5});
+    }
+    Model kept(to_dolfinx(MPI_COMM_WORLD, kept_tm, 1)), resected(to_dolfinx(MPI_COMM_WORLD, res_tm, 1));
+    // Volumes of the two meshes (half model) against the exact half cap
+    // pi H^2 (3 Rs - H) / 6, and the resected mesh against the grid
+    // quadrature of the analytic region.
+    const double Rs = meshes::sphere_radius(cap.R, cap.H);
+    const double half_cap = M_PI * cap.H * cap.H * (3 * Rs - cap.H) / 6;
+    EXPECT_NEAR((kept.volume() + resected.volume()) / half_cap, 1.0, 0.01) << "a = " << a;
+    std::cout << "a = " << a << " deg: (kept + resected) / cap = " << (kept.volume() + resected.volume()) / half_cap
+              << ", resected mesh / analytic region = " << 2 * resected.volume() / analytic_resected_volume(cap, g)
+              << "\n";
+    EXPECT_NEAR(2 * resected.volume() / analytic_resected_volume(cap, g), 1.0, 0.03) << "a = " << a;
+    // The resected part's cut faces are the kept body's suture faces.
+    EXPECT_NEAR(resected.area("suture_abd") / kept.area("suture_abd"), 1.0, 0.01) << "a = " << a;
+    EXPECT_NEAR(resected.area("suture_bcd") / kept.area("suture_bcd"), 1.0, 0.01) << "a = " << a;
+    EXPECT_GT(resected.area("skin"), 0.0);
+  }
+}
+
+TEST(Incision, ResectedPartMeshOfOrderTwoIsWritten)
+{
+  // P2: the curved skin of the resected part; volume within 1 % of the
+  // analytic region and the XDMF (10-node tetrahedra, 6-node facet tags).
+  Config c = surgery_case(0.012);
+  c.set("geometry.order", std::int64_t(2));
+  const auto cap = cap_spec(c);
+  const auto g = meshes::incision_geometry(cap, incision_spec(c));
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  meshes::TaggedMesh tm;
+  tm.order = 2;
+  if (rank == 0)
+    tm = meshes::mesh_resected_part(cap, incision_spec(c), {1, 2, 3, 4, 5});
+  auto dm = to_dolfinx(MPI_COMM_WORLD, tm, 2);
+  Model resected(dm);
+  EXPECT_NEAR(2 * resected.volume() / analytic_resected_volume(cap, g), 1.0, 0.01);
+  const auto file = std::filesystem::temp_directory_path() / ("breastsim_resected_p2_" + std::to_string(::getpid()) + ".xdmf");
+  write_mesh_xdmf(dm, file);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0)
+  {
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("Tetrahedron_10"), std::string::npos);
+    EXPECT_NE(text.find("Triangle_6"), std::string::npos);
+    std::filesystem::remove(file);
+    std::filesystem::remove(std::filesystem::path(file).replace_extension(".h5"));
   }
 }
 
