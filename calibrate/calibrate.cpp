@@ -1,4 +1,5 @@
 #include "calibrate.hpp"
+#include "calibration_plots.hpp"
 #include "checkpoint.hpp"
 #include "errors.hpp"
 #include "log.hpp"
@@ -21,18 +22,23 @@ std::string parameter_text(const std::vector<FitParameter>& fit, const std::vect
   return s;
 }
 
+/// Per measurement before/after; `d` is the model-error correction (empty:
+/// none), included in model_after.
 nlohmann::json misfit_json(const Measurements& data, const std::vector<Observables>& before,
-                           const std::vector<Observables>& after)
+                           const std::vector<Observables>& after, const std::vector<double>& d)
 {
   auto rows = nlohmann::json::array();
-  for (const auto& m : data.items)
+  for (std::size_t i = 0; i < data.items.size(); ++i)
   {
-    const double b = model_value(m, before), a = model_value(m, after);
+    const auto& m = data.items[i];
+    const double di = d.empty() ? 0.0 : d[i];
+    const double b = model_value(m, before), a = model_value(m, after) + di;
     rows.push_back({{"measurement", m.label},
                     {"measured", m.value},
                     {"sigma", m.sigma},
                     {"model_before", b},
                     {"model_after", a},
+                    {"model_error_correction", di},
                     {"weighted_residual_before", (b - m.value) / m.sigma},
                     {"weighted_residual_after", (a - m.value) / m.sigma}});
   }
@@ -54,11 +60,19 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   for (const auto& p : fit)
     names.push_back(p.name);
 
-  ForwardModel forward(data.postures, comm);
+  ForwardModel forward(data.postures, comm, o.morph);
   Objective f(start, data, fit, forward, cp.evaluations);
+  // Every evaluation, for the misfit-history plot: stage is "start",
+  // "fit", "corrected fit" or "uncertainty" (Jacobian at the optimum).
+  auto history = nlohmann::json::array();
+  std::string stage = "start";
   f.on_evaluation(
       [&](const Evaluation& e)
       {
+        nlohmann::json h = {{"evaluation", e.index}, {"chi2", e.chi2}, {"stage", stage}};
+        for (std::size_t j = 0; j < fit.size(); ++j)
+          h["parameters"][fit[j].name] = std::exp(e.y[j]);
+        history.push_back(h);
         log::info("eval {:>4}  chi2 = {:<12.6g} {}{}", e.index, e.chi2, parameter_text(fit, e.y),
                   e.best ? "  *" : "");
         if (!o.checkpoint.empty())
@@ -80,6 +94,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   OptimizerResult res;
   const int done = f.evaluations();
   oo.max_evals = o.resume ? oo.max_evals - cp.evaluations : oo.max_evals;
+  stage = "fit";
   if (oo.max_evals > 0)
     res = minimise(f, y0, oo);
   else
@@ -87,9 +102,44 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   log::info("optimiser ({}): {} after {} evaluations", oo.algorithm, res.stop_reason,
             f.evaluations() - done);
 
+  // Model-error correction: the discretisation error of the fit mesh at the
+  // fitted parameters, d_i = G_i(fine mesh) - G_i(fit mesh), is added to the
+  // model and the fit repeated from its optimum (--max-evals again).
+  nlohmann::json correction_json;
+  int fine_solves = 0;
+  if (o.correction_mesh_size > 0)
+  {
+    Config fine = with_parameters(start, fit, res.y);
+    fine.set("geometry.mesh_size", o.correction_mesh_size);
+    fine.validate();
+    f.residuals(res.y);
+    const std::vector<Observables> coarse = f.observables();
+    log::info("model-error correction: solving the fitted case on a {:.4g} mm mesh",
+              1e3 * o.correction_mesh_size);
+    ForwardModel fine_model(data.postures, comm, o.morph);
+    const std::vector<Observables> fine_obs = fine_model.solve(fine);
+    fine_solves = fine_model.posture_solves();
+    std::vector<double> d;
+    for (const auto& item : data.items)
+      d.push_back(model_value(item, fine_obs) - model_value(item, coarse));
+    f.set_correction(d);
+    stage = "corrected fit";
+    const int before_correction = f.evaluations();
+    res = minimise(f, res.y, oo);
+    log::info("corrected fit: {} after {} evaluations", res.stop_reason,
+              f.evaluations() - before_correction);
+    correction_json = {{"mesh_size", o.correction_mesh_size},
+                       {"fine_posture_solves", fine_solves},
+                       {"unknowns_fine", fine_model.dofs()},
+                       {"at_parameters", nlohmann::json::object()}};
+    for (std::size_t j = 0; j < fit.size(); ++j)
+      correction_json["at_parameters"][fit[j].name] = std::exp(res.y[j]);
+  }
+
   // Observables and uncertainty at the optimum.
   const double chi2_after = f.chi2(res.y);
   const std::vector<Observables> obs_after = f.observables();
+  stage = "uncertainty";
   const Matrix J = f.jacobian(res.y, oo.fd_step);
   const std::size_t m = data.items.size(), n = fit.size();
   const double reduced_chi2 = m > n ? chi2_after / double(m - n) : std::nan("");
@@ -134,22 +184,34 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
                    {"measurements", m},
                    {"reduced_chi2_after", reduced_chi2},
                    {"interval_widening", std::sqrt(variance_factor)},
-                   {"per_measurement", misfit_json(data, obs_before, obs_after)}};
+                   {"per_measurement", misfit_json(data, obs_before, obs_after, f.correction())}};
+  if (!correction_json.is_null())
+    rep["model_error_correction"] = correction_json;
+  rep["history"] = history;
   rep["warnings"] = warnings;
   rep["evaluations"] = f.evaluations();
   rep["posture_solves"] = forward.posture_solves();
   rep["warm_started_solves"] = forward.warm_starts();
   rep["meshes_built"] = forward.meshes_built();
+  rep["mesh_morphs"] = forward.morphs();
   rep["unknowns"] = forward.dofs();
   rep["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // The calibrated model in each measured posture, for the pictures (not
+  // counted above: solved after the report's counts).
+  out.surfaces = forward.surfaces(out.calibrated);
   return out;
 }
 
-void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm)
+void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm,
+                       const CalibrationOutputOptions& o)
 {
   OutputDir dir(out, comm);
   write_text(dir.path() / "calibrated.toml", r.calibrated.to_toml(), comm);
   write_json(dir.path() / "report.json", r.report, comm);
+  for (const auto& s : r.surfaces)
+    write_json(dir.path() / ("surface_" + s["posture"].get<std::string>() + ".json"), s, comm);
+  if (o.pictures)
+    render_calibration_pictures(dir.path(), o.picture_size, comm);
   dir.commit();
 }
 
