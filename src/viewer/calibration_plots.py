@@ -59,11 +59,15 @@ def history_plot(rep, size, path):
         sel = np.array([e["stage"] == stage for e in hist])
         if sel.any():
             ax.semilogy(ev[sel], chi2[sel], mk, color=col, ms=4, label=stage, ls="none")
-    # The best so far within the fit stages (the Jacobian points are excluded).
-    fit_sel = np.array([e["stage"] in ("start", "fit", "corrected fit") for e in hist])
-    if fit_sel.any():
-        best = np.minimum.accumulate(chi2[fit_sel])
-        ax.semilogy(ev[fit_sel], best, "-", color="tab:red", lw=1.2, label="best so far")
+    # The best so far, per objective: the corrected fit's chi2 includes the
+    # model-error correction, so it starts its own line (Jacobian points excluded).
+    label = "best so far"
+    for group in (("start", "fit"), ("corrected fit",)):
+        sel = np.array([e["stage"] in group for e in hist])
+        if sel.any():
+            ax.semilogy(ev[sel], np.minimum.accumulate(chi2[sel]), "-", color="tab:red", lw=1.2,
+                        label=label)
+            label = None
     m = rep["misfit"]["measurements"]
     ax.axhline(m, color="k", ls=":", lw=0.8, label=f"chi2 = m = {m}")
     ax.set_ylabel("chi2")
