@@ -21,7 +21,7 @@ printf '[geometry]\nmesh_size = 0.016\n' > truth.toml
 for png in misfit_history measurements overview view_standing view_supine view_all_fours; do
   $CHECK size "fit/$png.png" 640 480 || fail "picture $png.png"
 done
-for png in view_standing view_supine; do
+for png in misfit_history measurements view_standing view_supine; do
   $CHECK drawn "fit/$png.png" || fail "picture $png.png is blank"
 done
 $CHECK differ fit/view_standing.png fit/view_supine.png || fail "standing and supine pictures are the same"
