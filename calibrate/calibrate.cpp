@@ -60,6 +60,15 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   for (const auto& p : fit)
     names.push_back(p.name);
 
+  auto warnings = nlohmann::json::array();
+  if (!o.morph && changes_geometry(fit))
+  {
+    const std::string w = "remeshing for R, H (--remesh): the misfit jumps with the mesh topology, "
+                          "so finite-difference gradients and the intervals of R and H are "
+                          "unreliable (use the default mesh morphing)";
+    warnings.push_back(w);
+    log::warn("{}", w);
+  }
   ForwardModel forward(data.postures, comm, o.morph);
   Objective f(start, data, fit, forward, cp.evaluations);
   // Every evaluation, for the misfit-history plot: stage is "start",
@@ -161,7 +170,6 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   rep["algorithm"] = oo.algorithm;
   rep["stop_reason"] = res.stop_reason;
   rep["fit"] = nlohmann::json::array();
-  auto warnings = nlohmann::json::array();
   for (std::size_t j = 0; j < fit.size(); ++j)
   {
     const double p = std::exp(res.y[j]);
