@@ -111,42 +111,66 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   log::info("optimiser ({}): {} after {} evaluations", oo.algorithm, res.stop_reason,
             f.evaluations() - done);
 
-  // Model-error correction: the discretisation error of the fit mesh at the
-  // fitted parameters, d_i = G_i(fine mesh) - G_i(fit mesh), is added to the
-  // model and the fit repeated from its optimum (--max-evals again).
+  // Model-error correction (approximation-error approach): the
+  // discretisation error of the fit mesh at the current parameters,
+  // d_i = G_i(fine mesh) - G_i(fit mesh), is added to the model and the fit
+  // repeated from its optimum (--max-evals per pass). d depends on the
+  // parameters, so this is iterated to a fixed point: until no ln p moves by
+  // more than correction_tolerance, at most correction_passes times.
   nlohmann::json correction_json;
-  int fine_solves = 0;
   if (o.correction_mesh_size > 0)
   {
-    Config fine = with_parameters(start, fit, res.y);
-    fine.set("geometry.mesh_size", o.correction_mesh_size);
-    fine.validate();
-    f.residuals(res.y);
-    const std::vector<Observables> coarse = f.observables();
-    log::info("model-error correction: solving the fitted case on a {:.4g} mm mesh",
-              1e3 * o.correction_mesh_size);
     ForwardModel fine_model(data.postures, comm, o.morph);
-    const std::vector<Observables> fine_obs = fine_model.solve(fine);
-    fine_solves = fine_model.posture_solves();
-    std::vector<double> d;
-    for (const auto& item : data.items)
-      d.push_back(model_value(item, fine_obs) - model_value(item, coarse));
-    f.set_correction(d);
-    stage = "corrected fit";
-    const int before_correction = f.evaluations();
-    // The correction moves the optimum a little: a small first step keeps
-    // BOBYQA near it (0.2 in ln p wandered over 100+ evaluations).
+    auto passes = nlohmann::json::array();
     OptimizerOptions oc = oo;
+    // A small first step keeps BOBYQA near the previous optimum (0.2 in ln p
+    // wandered over 100+ evaluations).
     oc.initial_step = std::min(oo.initial_step, 0.02);
-    res = minimise(f, res.y, oc);
-    log::info("corrected fit: {} after {} evaluations", res.stop_reason,
-              f.evaluations() - before_correction);
+    for (int pass = 1; pass <= o.correction_passes; ++pass)
+    {
+      Config fine = with_parameters(start, fit, res.y);
+      fine.set("geometry.mesh_size", o.correction_mesh_size);
+      fine.validate();
+      f.residuals(res.y);
+      const std::vector<Observables> coarse = f.observables(); // without the correction
+      log::info("model-error correction, pass {}: solving the fitted case on a {:.4g} mm mesh",
+                pass, 1e3 * o.correction_mesh_size);
+      const std::vector<Observables> fine_obs = fine_model.solve(fine);
+      std::vector<double> d;
+      for (const auto& item : data.items)
+        d.push_back(model_value(item, fine_obs) - model_value(item, coarse));
+      f.set_correction(d);
+      nlohmann::json at = nlohmann::json::object(); // where d was computed
+      for (std::size_t j = 0; j < fit.size(); ++j)
+        at[fit[j].name] = std::exp(res.y[j]);
+      stage = "corrected fit";
+      const int before = f.evaluations();
+      const std::vector<double> y_prev = res.y;
+      res = minimise(f, res.y, oc);
+      double moved = 0; // largest change of ln p in this pass
+      for (std::size_t j = 0; j < fit.size(); ++j)
+        moved = std::max(moved, std::abs(res.y[j] - y_prev[j]));
+      log::info("corrected fit, pass {}: {} after {} evaluations; largest change of ln p {:.3g}",
+                pass, res.stop_reason, f.evaluations() - before, moved);
+      passes.push_back({{"at_parameters", at},
+                        {"evaluations", f.evaluations() - before},
+                        {"largest_change_ln_p", moved}});
+      if (moved < o.correction_tolerance)
+        break;
+    }
+    if (passes.back()["largest_change_ln_p"].get<double>() >= o.correction_tolerance)
+    {
+      const std::string w = fmt::format(
+          "model-error correction: not converged after {} passes (the last moved ln p by {:.3g}); "
+          "the remaining bias is not in the intervals",
+          passes.size(), passes.back()["largest_change_ln_p"].get<double>());
+      warnings.push_back(w);
+      log::warn("{}", w);
+    }
     correction_json = {{"mesh_size", o.correction_mesh_size},
-                       {"fine_posture_solves", fine_solves},
+                       {"fine_posture_solves", fine_model.posture_solves()},
                        {"unknowns_fine", fine_model.dofs()},
-                       {"at_parameters", nlohmann::json::object()}};
-    for (std::size_t j = 0; j < fit.size(); ++j)
-      correction_json["at_parameters"][fit[j].name] = std::exp(res.y[j]);
+                       {"passes", passes}};
   }
 
   // Observables and uncertainty at the optimum.

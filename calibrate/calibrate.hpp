@@ -20,8 +20,11 @@ struct CalibrateOptions
   bool morph = true;                ///< morph the mesh for R, H (false: remesh, forward_model.hpp)
   /// > 0: after the fit, solve the fitted case on a mesh of this size,
   /// correct the model by the difference d_i = G_fine,i - G_fit,i
-  /// (discretisation error of the fit mesh) and fit again from there.
+  /// (discretisation error of the fit mesh) and fit again from there;
+  /// repeated with d at the new optimum (see the two options below).
   double correction_mesh_size = 0;
+  int correction_passes = 4;          ///< at most this many corrected fits ...
+  double correction_tolerance = 0.01; ///< ... until every ln p moves less than this
 };
 
 struct CalibrationResult
