@@ -147,18 +147,32 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
       const int before = f.evaluations();
       const std::vector<double> y_prev = res.y;
       res = minimise(f, res.y, oc);
-      double moved = 0; // largest change of ln p in this pass
+      // Converged when every parameter moved by less than the tolerance in
+      // ln p, or by less than a tenth of its standard error (a parameter the
+      // data do not determine drifts along its flat valley from pass to pass).
+      const Matrix J = f.jacobian(res.y, oo.fd_step);
+      const std::vector<double> se = gauss_newton_uncertainty(J, res.y, names).se_log;
+      double moved = 0, moved_se = 0; // largest change of ln p, and in units of SE
+      bool converged = true;
       for (std::size_t j = 0; j < fit.size(); ++j)
-        moved = std::max(moved, std::abs(res.y[j] - y_prev[j]));
-      log::info("corrected fit, pass {}: {} after {} evaluations; largest change of ln p {:.3g}",
-                pass, res.stop_reason, f.evaluations() - before, moved);
+      {
+        const double dy = std::abs(res.y[j] - y_prev[j]);
+        moved = std::max(moved, dy);
+        moved_se = std::max(moved_se, dy / se[j]);
+        converged = converged && (dy < o.correction_tolerance || dy < 0.1 * se[j]);
+      }
+      log::info("corrected fit, pass {}: {} after {} evaluations; largest change of ln p {:.3g} "
+                "({:.2g} SE)",
+                pass, res.stop_reason, f.evaluations() - before, moved, moved_se);
       passes.push_back({{"at_parameters", at},
                         {"evaluations", f.evaluations() - before},
-                        {"largest_change_ln_p", moved}});
-      if (moved < o.correction_tolerance)
+                        {"largest_change_ln_p", moved},
+                        {"largest_change_in_se", moved_se},
+                        {"converged", converged}});
+      if (converged)
         break;
     }
-    if (passes.back()["largest_change_ln_p"].get<double>() >= o.correction_tolerance)
+    if (!passes.back()["converged"].get<bool>())
     {
       const std::string w = fmt::format(
           "model-error correction: not converged after {} passes (the last moved ln p by {:.3g}); "

@@ -24,7 +24,8 @@ struct CalibrateOptions
   /// repeated with d at the new optimum (see the two options below).
   double correction_mesh_size = 0;
   int correction_passes = 4;          ///< at most this many corrected fits ...
-  double correction_tolerance = 0.01; ///< ... until every ln p moves less than this
+  /// ... until every ln p moves less than this or than 0.1 of its standard error
+  double correction_tolerance = 0.01;
 };
 
 struct CalibrationResult
