@@ -1,4 +1,5 @@
 #include "calibrate.hpp"
+#include "calibration_plots.hpp"
 #include "checkpoint.hpp"
 #include "errors.hpp"
 #include "log.hpp"
@@ -21,18 +22,23 @@ std::string parameter_text(const std::vector<FitParameter>& fit, const std::vect
   return s;
 }
 
+/// Per measurement before/after; `d` is the model-error correction (empty:
+/// none), included in model_after.
 nlohmann::json misfit_json(const Measurements& data, const std::vector<Observables>& before,
-                           const std::vector<Observables>& after)
+                           const std::vector<Observables>& after, const std::vector<double>& d)
 {
   auto rows = nlohmann::json::array();
-  for (const auto& m : data.items)
+  for (std::size_t i = 0; i < data.items.size(); ++i)
   {
-    const double b = model_value(m, before), a = model_value(m, after);
+    const auto& m = data.items[i];
+    const double di = d.empty() ? 0.0 : d[i];
+    const double b = model_value(m, before), a = model_value(m, after) + di;
     rows.push_back({{"measurement", m.label},
                     {"measured", m.value},
                     {"sigma", m.sigma},
                     {"model_before", b},
                     {"model_after", a},
+                    {"model_error_correction", di},
                     {"weighted_residual_before", (b - m.value) / m.sigma},
                     {"weighted_residual_after", (a - m.value) / m.sigma}});
   }
@@ -54,11 +60,28 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   for (const auto& p : fit)
     names.push_back(p.name);
 
-  ForwardModel forward(data.postures, comm);
+  auto warnings = nlohmann::json::array();
+  if (!o.morph && changes_geometry(fit))
+  {
+    const std::string w = "remeshing for R, H (--remesh): the misfit jumps with the mesh topology, "
+                          "so finite-difference gradients and the intervals of R and H are "
+                          "unreliable (use the default mesh morphing)";
+    warnings.push_back(w);
+    log::warn("{}", w);
+  }
+  ForwardModel forward(data.postures, comm, o.morph);
   Objective f(start, data, fit, forward, cp.evaluations);
+  // Every evaluation, for the misfit-history plot: stage is "start",
+  // "fit", "corrected fit" or "uncertainty" (Jacobian at the optimum).
+  auto history = nlohmann::json::array();
+  std::string stage = "start";
   f.on_evaluation(
       [&](const Evaluation& e)
       {
+        nlohmann::json h = {{"evaluation", e.index}, {"chi2", e.chi2}, {"stage", stage}};
+        for (std::size_t j = 0; j < fit.size(); ++j)
+          h["parameters"][fit[j].name] = std::exp(e.y[j]);
+        history.push_back(h);
         log::info("eval {:>4}  chi2 = {:<12.6g} {}{}", e.index, e.chi2, parameter_text(fit, e.y),
                   e.best ? "  *" : "");
         if (!o.checkpoint.empty())
@@ -80,6 +103,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   OptimizerResult res;
   const int done = f.evaluations();
   oo.max_evals = o.resume ? oo.max_evals - cp.evaluations : oo.max_evals;
+  stage = "fit";
   if (oo.max_evals > 0)
     res = minimise(f, y0, oo);
   else
@@ -87,9 +111,86 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   log::info("optimiser ({}): {} after {} evaluations", oo.algorithm, res.stop_reason,
             f.evaluations() - done);
 
+  // Model-error correction (approximation-error approach): the
+  // discretisation error of the fit mesh at the current parameters,
+  // d_i = G_i(fine mesh) - G_i(fit mesh), is added to the model and the fit
+  // repeated from its optimum (--max-evals per pass). d depends on the
+  // parameters, so this is iterated to a fixed point: until no ln p moves by
+  // more than correction_tolerance, at most correction_passes times.
+  nlohmann::json correction_json;
+  if (o.correction_mesh_size > 0)
+  {
+    ForwardModel fine_model(data.postures, comm, o.morph);
+    auto passes = nlohmann::json::array();
+    OptimizerOptions oc = oo;
+    // A small first step keeps BOBYQA near the previous optimum (0.2 in ln p
+    // wandered over 100+ evaluations).
+    oc.initial_step = std::min(oo.initial_step, 0.02);
+    for (int pass = 1; pass <= o.correction_passes; ++pass)
+    {
+      Config fine = with_parameters(start, fit, res.y);
+      fine.set("geometry.mesh_size", o.correction_mesh_size);
+      fine.validate();
+      f.residuals(res.y);
+      const std::vector<Observables> coarse = f.observables(); // without the correction
+      log::info("model-error correction, pass {}: solving the fitted case on a {:.4g} mm mesh",
+                pass, 1e3 * o.correction_mesh_size);
+      const std::vector<Observables> fine_obs = fine_model.solve(fine);
+      std::vector<double> d;
+      for (const auto& item : data.items)
+        d.push_back(model_value(item, fine_obs) - model_value(item, coarse));
+      f.set_correction(d);
+      nlohmann::json at = nlohmann::json::object(); // where d was computed
+      for (std::size_t j = 0; j < fit.size(); ++j)
+        at[fit[j].name] = std::exp(res.y[j]);
+      stage = "corrected fit";
+      const int before = f.evaluations();
+      const std::vector<double> y_prev = res.y;
+      res = minimise(f, res.y, oc);
+      // Converged when every parameter moved by less than the tolerance in
+      // ln p, or by less than a tenth of its standard error (a parameter the
+      // data do not determine drifts along its flat valley from pass to pass).
+      const Matrix J = f.jacobian(res.y, oo.fd_step);
+      const std::vector<double> se = gauss_newton_uncertainty(J, res.y, names).se_log;
+      double moved = 0, moved_se = 0; // largest change of ln p, and in units of SE
+      bool converged = true;
+      for (std::size_t j = 0; j < fit.size(); ++j)
+      {
+        const double dy = std::abs(res.y[j] - y_prev[j]);
+        moved = std::max(moved, dy);
+        moved_se = std::max(moved_se, dy / se[j]);
+        converged = converged && (dy < o.correction_tolerance || dy < 0.1 * se[j]);
+      }
+      log::info("corrected fit, pass {}: {} after {} evaluations; largest change of ln p {:.3g} "
+                "({:.2g} SE)",
+                pass, res.stop_reason, f.evaluations() - before, moved, moved_se);
+      passes.push_back({{"at_parameters", at},
+                        {"evaluations", f.evaluations() - before},
+                        {"largest_change_ln_p", moved},
+                        {"largest_change_in_se", moved_se},
+                        {"converged", converged}});
+      if (converged)
+        break;
+    }
+    if (!passes.back()["converged"].get<bool>())
+    {
+      const std::string w = fmt::format(
+          "model-error correction: not converged after {} passes (the last moved ln p by {:.3g}); "
+          "the remaining bias is not in the intervals",
+          passes.size(), passes.back()["largest_change_ln_p"].get<double>());
+      warnings.push_back(w);
+      log::warn("{}", w);
+    }
+    correction_json = {{"mesh_size", o.correction_mesh_size},
+                       {"fine_posture_solves", fine_model.posture_solves()},
+                       {"unknowns_fine", fine_model.dofs()},
+                       {"passes", passes}};
+  }
+
   // Observables and uncertainty at the optimum.
   const double chi2_after = f.chi2(res.y);
   const std::vector<Observables> obs_after = f.observables();
+  stage = "uncertainty";
   const Matrix J = f.jacobian(res.y, oo.fd_step);
   const std::size_t m = data.items.size(), n = fit.size();
   const double reduced_chi2 = m > n ? chi2_after / double(m - n) : std::nan("");
@@ -107,7 +208,6 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   rep["algorithm"] = oo.algorithm;
   rep["stop_reason"] = res.stop_reason;
   rep["fit"] = nlohmann::json::array();
-  auto warnings = nlohmann::json::array();
   for (std::size_t j = 0; j < fit.size(); ++j)
   {
     const double p = std::exp(res.y[j]);
@@ -134,22 +234,34 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
                    {"measurements", m},
                    {"reduced_chi2_after", reduced_chi2},
                    {"interval_widening", std::sqrt(variance_factor)},
-                   {"per_measurement", misfit_json(data, obs_before, obs_after)}};
+                   {"per_measurement", misfit_json(data, obs_before, obs_after, f.correction())}};
+  if (!correction_json.is_null())
+    rep["model_error_correction"] = correction_json;
+  rep["history"] = history;
   rep["warnings"] = warnings;
   rep["evaluations"] = f.evaluations();
   rep["posture_solves"] = forward.posture_solves();
   rep["warm_started_solves"] = forward.warm_starts();
   rep["meshes_built"] = forward.meshes_built();
+  rep["mesh_morphs"] = forward.morphs();
   rep["unknowns"] = forward.dofs();
   rep["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // The calibrated model in each measured posture, for the pictures (not
+  // counted above: solved after the report's counts).
+  out.surfaces = forward.surfaces(out.calibrated);
   return out;
 }
 
-void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm)
+void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm,
+                       const CalibrationOutputOptions& o)
 {
   OutputDir dir(out, comm);
   write_text(dir.path() / "calibrated.toml", r.calibrated.to_toml(), comm);
   write_json(dir.path() / "report.json", r.report, comm);
+  for (const auto& s : r.surfaces)
+    write_json(dir.path() / ("surface_" + s["posture"].get<std::string>() + ".json"), s, comm);
+  if (o.pictures)
+    render_calibration_pictures(dir.path(), o.picture_size, comm);
   dir.commit();
 }
 

@@ -17,21 +17,41 @@ struct CalibrateOptions
   std::filesystem::path checkpoint; ///< written after every evaluation ("" = none)
   bool resume = false;              ///< start from the checkpoint's best point
   std::string measurements_source;  ///< for the report
+  bool morph = true;                ///< morph the mesh for R, H (false: remesh, forward_model.hpp)
+  /// > 0: after the fit, solve the fitted case on a mesh of this size,
+  /// correct the model by the difference d_i = G_fine,i - G_fit,i
+  /// (discretisation error of the fit mesh) and fit again from there;
+  /// repeated with d at the new optimum (see the two options below).
+  double correction_mesh_size = 0;
+  int correction_passes = 4;          ///< at most this many corrected fits ...
+  /// ... until every ln p moves less than this or than 0.1 of its standard error
+  double correction_tolerance = 0.01;
 };
 
 struct CalibrationResult
 {
   Config calibrated;      ///< the input case with the fitted values set
   nlohmann::json report;  ///< see docs/CALIBRATION.md
+  /// Skin surface of the calibrated model in each measured posture
+  /// (surface_export.hpp documents), for the pictures.
+  std::vector<nlohmann::json> surfaces;
+};
+
+struct CalibrationOutputOptions
+{
+  bool pictures = true;            ///< PNGs (calibration_plots.py, render.py)
+  std::string picture_size = "800x600";
 };
 
 CalibrationResult calibrate(const Config& start, const Measurements& data,
                             const std::vector<FitParameter>& fit, const CalibrateOptions& o,
                             MPI_Comm comm);
 
-/// Write calibrated.toml and report.json into `out` (staged: replaced only
-/// when both are written).
-void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm);
+/// Write calibrated.toml, report.json, surface_<posture>.json and (with
+/// `pictures`) misfit_history.png, measurements.png, view_<posture>.png and
+/// overview.png into `out` (staged: replaced only when all are written).
+void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm,
+                       const CalibrationOutputOptions& o = {});
 
 /// Printable summary: fitted values with intervals and flags.
 std::string calibration_table(const nlohmann::json& report);

@@ -14,8 +14,6 @@ namespace
 constexpr double material_span = 30.0;
 /// Bound factor for the neutral shape R, H.
 constexpr double geometry_span = 1.25;
-/// FD step multiplier for R, H (1e-3 * 20 = 2 % with the default step).
-constexpr double geometry_fd_factor = 20.0;
 
 bool is_geometry(const std::string& name) { return name == "R" || name == "H"; }
 } // namespace
@@ -57,7 +55,7 @@ std::vector<FitParameter> parse_fit(const std::string& list, const Config& start
     // Stay strictly inside the schema's range (open lower bounds, e.g. (0, ...]).
     const double lo = std::max(p0 / span, k.lo > 0 ? k.lo * (1 + 1e-9) : 0.0);
     const double hi = std::min(p0 * span, k.hi);
-    fit.push_back({name, k.key, k.unit, lo, hi, is_geometry(name) ? geometry_fd_factor : 1.0});
+    fit.push_back({name, k.key, k.unit, lo, hi});
   }
   if (fit.empty())
     throw InputError("--fit: no parameter given (e.g. --fit mu,c)");

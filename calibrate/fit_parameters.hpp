@@ -16,9 +16,6 @@ struct FitParameter
   std::string unit;
   double lower = 0;  ///< search bounds [unit]
   double upper = 0;
-  /// Finite-difference step multiplier: R and H remesh, and a step of a few
-  /// per cent averages over the mesh-topology jumps of gmsh.
-  double fd_step_factor = 1;
 };
 
 /// Short names accepted by --fit and their case keys.

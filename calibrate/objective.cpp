@@ -17,12 +17,22 @@ void Objective::set_best(const std::vector<double>& y, double chi2)
   _best_chi2 = chi2;
 }
 
+void Objective::set_correction(std::vector<double> d)
+{
+  _correction = std::move(d);
+  _last_y.clear();
+  _best_y.clear();
+  _best_chi2 = std::numeric_limits<double>::infinity();
+}
+
 const std::vector<double>& Objective::residuals(const std::vector<double>& y)
 {
   if (!_last_y.empty() && y == _last_y)
     return _last_r;
   _obs = _forward.solve(with_parameters(_base, _fit, y));
   _last_r = weighted_residuals(_data, _obs);
+  for (std::size_t i = 0; i < _correction.size(); ++i)
+    _last_r[i] += _correction[i] / _data.items[i].sigma; // r_i = (G_i + d_i - G_obs,i) / sigma_i
   _last_y = y;
   Evaluation e{++_evaluations, y, calibration::chi2(_last_r), false};
   if (e.chi2 < _best_chi2)
@@ -44,7 +54,7 @@ Matrix Objective::jacobian(const std::vector<double>& y, double h, bool central)
   for (std::size_t j = 0; j < y.size(); ++j)
   {
     // Forward: (r(y + h e_j) - r(y)) / h;  central: (r(y + h e_j) - r(y - h e_j)) / 2h.
-    const double hj = h * _fit[j].fd_step_factor;
+    const double hj = h;
     std::vector<double> yp = y;
     yp[j] += hj;
     const std::vector<double> rp = residuals(yp);

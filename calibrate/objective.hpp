@@ -39,7 +39,7 @@ public:
   /// Observables of each posture at the last evaluated point.
   const std::vector<Observables>& observables() const { return _obs; }
 
-  /// J = dr/dy by forward differences with step h * fd_step_factor (central if `central`).
+  /// J = dr/dy by forward differences with step h in y = ln p (central if `central`).
   Matrix jacobian(const std::vector<double>& y, double h, bool central = false);
   /// d chi2/dy = 2 J^T r with the forward-difference Jacobian.
   std::vector<double> gradient(const std::vector<double>& y, double h);
@@ -47,6 +47,11 @@ public:
   int evaluations() const { return _evaluations; }
   const std::vector<double>& best_y() const { return _best_y; }
   double best_chi2() const { return _best_chi2; }
+  /// Model-error correction (approximation-error approach): add `d_i` [m] to
+  /// the model value of measurement i,  r_i = (G_i(p) + d_i - G_obs,i) / sigma_i.
+  /// Forgets the last point and the best point (chi2 changes meaning).
+  void set_correction(std::vector<double> d);
+  const std::vector<double>& correction() const { return _correction; }
   /// Start the record of the best point (e.g. from a checkpoint).
   void set_best(const std::vector<double>& y, double chi2);
   const std::vector<FitParameter>& fit() const { return _fit; }
@@ -59,7 +64,7 @@ private:
   ForwardModel& _forward;
   std::function<void(const Evaluation&)> _callback;
   int _evaluations = 0;
-  std::vector<double> _last_y, _last_r, _best_y;
+  std::vector<double> _last_y, _last_r, _best_y, _correction;
   std::vector<Observables> _obs;
   double _best_chi2 = 0;
 };

@@ -1,6 +1,7 @@
 // Calibration end to end on synthetic data without inverse crime: the
-// measurements come from the forward model on a finer mesh (h = 8 mm) with
-// Gaussian noise of 0.5 mm; the fits use coarser meshes (10-16 mm).
+// measurements come from the forward model on a finer mesh (h = 8 mm, or
+// 4 mm in the long test) with Gaussian noise of 0.5 mm; the fits use coarser
+// meshes (10-16 mm), morphed when R and H change.
 #include "calibrate.hpp"
 #include "checkpoint.hpp"
 #include "errors.hpp"
@@ -35,6 +36,39 @@ const Measurements& synthetic_data()
     return parse_measurements(synthetic_measurements(truth, o, MPI_COMM_WORLD), "synthetic");
   }();
   return m;
+}
+
+/// The default case (truth) on a 4 mm mesh, noise 0.5 mm, sigma 1 mm
+/// (about 25 s to generate: used by the long test only).
+const Measurements& fine_synthetic_data()
+{
+  static const Measurements m = []
+  {
+    Config truth;
+    truth.set("geometry.mesh_size", 0.004);
+    truth.validate();
+    SyntheticOptions o;
+    o.noise = 5e-4;
+    o.sigma = 1e-3;
+    o.seed = 1;
+    return parse_measurements(synthetic_measurements(truth, o, MPI_COMM_WORLD), "synthetic 4 mm");
+  }();
+  return m;
+}
+
+/// Truth of the default case for a fitted parameter name.
+double true_value(const std::string& name)
+{
+  const Config truth;
+  return truth.number(parse_fit(name, truth)[0].key);
+}
+
+/// The 95 % interval of `p` contains the truth.
+void expect_truth_inside(const nlohmann::json& p)
+{
+  const double t = true_value(p["name"]);
+  EXPECT_LT(p["interval_95"][0].get<double>(), t) << p.dump();
+  EXPECT_GT(p["interval_95"][1].get<double>(), t) << p.dump();
 }
 
 /// The starting case of a fit: wrong mu and c, coarse mesh `h`.
@@ -92,7 +126,7 @@ TEST(CalibrateRecovery, SyntheticDataRecoverMuAndCWithinTheirIntervals)
 
   // The calibrated case is an ordinary case file with the fitted values.
   const auto out = temp_path("breastsim_test_calibration");
-  write_calibration(r, out, MPI_COMM_WORLD);
+  write_calibration(r, out, MPI_COMM_WORLD, {false}); // pictures: tests/cli/calibrate.sh
   const Config back = Config::from_file(out / "calibrated.toml");
   EXPECT_NEAR(back.number("tissue.mu"), mu["fitted"].get<double>(), 1e-9 * mu_true);
   EXPECT_NEAR(back.number("base.c"), c["fitted"].get<double>(), 1e-9 * c_true);
@@ -164,4 +198,98 @@ TEST(CalibrateRecovery, InterruptedRunResumesFromItsCheckpoint)
   EXPECT_LE(r["misfit"]["chi2_after"].get<double>(), cp.best_chi2);
   EXPECT_NEAR(fitted(r, "mu")["fitted"].get<double>(), mu_true, 0.1 * mu_true);
   std::filesystem::remove(o.checkpoint);
+}
+
+TEST(CalibrateRecovery, ShapeAndStiffnessFromAMorphedMesh)
+{
+  // mu, c, R and H together from a wrong start (R = H = 65 mm): the mesh is
+  // generated once and morphed, and R, H come back within their intervals.
+  Config start = start_case(0.010);
+  start.set("geometry.R", 0.065);
+  start.set("geometry.H", 0.065);
+  start.validate();
+  const auto fit = parse_fit("mu,c,R,H", start);
+  CalibrateOptions o;
+  o.optimizer.max_evals = 120;
+  const auto rep = calibrate(start, synthetic_data(), fit, o, MPI_COMM_WORLD).report;
+  // Stated tolerances (8 mm data, 10 mm fit, noise 0.5 mm): R within 0.5 mm,
+  // H within 1 mm, mu within 10 %, c within 30 %; truth inside every interval.
+  EXPECT_NEAR(fitted(rep, "R")["fitted"].get<double>(), 0.070, 5e-4);
+  EXPECT_NEAR(fitted(rep, "H")["fitted"].get<double>(), 0.060, 1e-3);
+  EXPECT_NEAR(fitted(rep, "mu")["fitted"].get<double>(), mu_true, 0.10 * mu_true);
+  EXPECT_NEAR(fitted(rep, "c")["fitted"].get<double>(), c_true, 0.30 * c_true);
+  for (const std::string p : {"mu", "c", "R", "H"})
+    expect_truth_inside(fitted(rep, p));
+  EXPECT_EQ(rep["meshes_built"].get<int>(), 1);
+  EXPECT_GT(rep["mesh_morphs"].get<int>(), 10);
+  EXPECT_EQ(rep["history"].size(), static_cast<std::size_t>(rep["evaluations"].get<int>()));
+}
+
+TEST(CalibrateRecovery, ModelErrorCorrectionRemovesTheMeshBias)
+{
+  // Noise-free data from a 10 mm mesh, mu fitted on a 16 mm mesh: the coarse
+  // mesh is too stiff and mu comes out far too low. Correcting the model by
+  // its difference to a 10 mm mesh (here the data's own mesh, on purpose:
+  // the correction is then exact at the truth) must remove that bias.
+  static const Measurements data = []
+  {
+    Config truth;
+    truth.set("geometry.mesh_size", 0.010);
+    truth.validate();
+    SyntheticOptions o;
+    o.noise = 0;
+    o.sigma = 1e-3;
+    return parse_measurements(synthetic_measurements(truth, o, MPI_COMM_WORLD), "clean 10 mm");
+  }();
+  Config start = start_case(0.016);
+  start.set("base.c", c_true);
+  start.validate();
+  const auto fit = parse_fit("mu", start);
+  CalibrateOptions o;
+  o.optimizer.max_evals = 40;
+  const double plain = fitted(calibrate(start, data, fit, o, MPI_COMM_WORLD).report, "mu")["fitted"];
+  o.correction_mesh_size = 0.010;
+  const auto rep = calibrate(start, data, fit, o, MPI_COMM_WORLD).report;
+  const double corrected = fitted(rep, "mu")["fitted"];
+  EXPECT_GT(std::abs(plain / mu_true - 1), 0.05) << plain;     // the bias exists
+  EXPECT_LT(std::abs(corrected / mu_true - 1), 0.01) << corrected; // and is removed
+  EXPECT_LT(rep["misfit"]["chi2_after"].get<double>(), 0.01);
+  const auto& passes = rep["model_error_correction"]["passes"];
+  ASSERT_GE(passes.size(), 2u); // one pass overshoots (d depends on mu)
+  EXPECT_TRUE(passes.back()["converged"].get<bool>());
+  EXPECT_EQ(rep["model_error_correction"]["fine_posture_solves"].get<int>(),
+            3 * static_cast<int>(passes.size()));
+  EXPECT_DOUBLE_EQ(rep["model_error_correction"]["mesh_size"].get<double>(), 0.010);
+  bool corrected_somewhere = false;
+  for (const auto& row : rep["misfit"]["per_measurement"])
+    corrected_somewhere |= std::abs(row["model_error_correction"].get<double>()) > 5e-4;
+  EXPECT_TRUE(corrected_somewhere);
+}
+
+TEST(CalibrateRecovery, LongFiveParametersWithModelErrorCorrection)
+{
+  // mu, lambda, c, R, H from 4 mm data on a 10 mm fit mesh, with the
+  // model-error correction from a 6 mm mesh (docs/CALIBRATION.md).
+  Config start = start_case(0.010);
+  start.set("geometry.R", 0.065);
+  start.set("geometry.H", 0.065);
+  start.set("tissue.lambda", 5000.0);
+  start.validate();
+  const auto fit = parse_fit("mu,lambda,c,R,H", start);
+  CalibrateOptions o;
+  o.optimizer.max_evals = 200;
+  o.correction_mesh_size = 0.006;
+  const auto rep = calibrate(start, fine_synthetic_data(), fit, o, MPI_COMM_WORLD).report;
+  for (const std::string p : {"mu", "lambda", "c", "R", "H"})
+    expect_truth_inside(fitted(rep, p));
+  EXPECT_NEAR(fitted(rep, "R")["fitted"].get<double>(), 0.070, 5e-4);
+  EXPECT_NEAR(fitted(rep, "H")["fitted"].get<double>(), 0.060, 1e-3);
+  EXPECT_NEAR(fitted(rep, "mu")["fitted"].get<double>(), mu_true, 0.15 * mu_true);
+  EXPECT_NEAR(fitted(rep, "c")["fitted"].get<double>(), c_true, 0.30 * c_true);
+  // lambda is not determined by these observables: flagged, not claimed.
+  EXPECT_GT(fitted(rep, "lambda")["relative_standard_error"].get<double>(), 0.7);
+  EXPECT_NE(fitted(rep, "lambda")["flag"].get<std::string>(), "");
+  EXPECT_EQ(rep["model_error_correction"]["fine_posture_solves"].get<int>(),
+            3 * static_cast<int>(rep["model_error_correction"]["passes"].size()));
+  EXPECT_EQ(rep["meshes_built"].get<int>(), 1);
 }

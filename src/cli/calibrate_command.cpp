@@ -8,7 +8,9 @@
 #include "command.hpp"
 #include "overrides.hpp"
 #include "synthetic.hpp"
+#include "../viewer.hpp"
 #include <fmt/format.h>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -35,10 +37,11 @@ Command add_calibrate_command(CLI::App& root)
   struct Options
   {
     std::string measurements, case_file, fit = "mu,c", algorithm = "bobyqa", out, checkpoint,
-                                          petsc_options;
+                                          petsc_options, size = "800x600";
     std::vector<std::string> sets;
-    bool resume = false;
+    bool resume = false, remesh = false;
     int max_evals = 200;
+    double correction_mesh_size = 0;
   };
   auto o = std::make_shared<Options>();
   auto* app = root.add_subcommand(
@@ -64,6 +67,12 @@ Command add_calibrate_command(CLI::App& root)
   app->add_option("--checkpoint", o->checkpoint, "checkpoint file (default <out>.checkpoint.json)");
   app->add_flag("--resume", o->resume, "continue from the checkpoint's best point");
   app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
+  app->add_flag("--remesh", o->remesh, "remesh for every change of R, H instead of morphing the "
+                                       "mesh (the misfit is then rough in R, H)");
+  app->add_option("--correction-mesh-size", o->correction_mesh_size,
+                  "after the fit, correct the model by its discretisation error measured on a "
+                  "finer mesh of this size [m] and fit again (docs/CALIBRATION.md)");
+  app->add_option("--size", o->size, "picture size WIDTHxHEIGHT in pixels")->capture_default_str();
   return {app, [o]()
           {
             Config c = o->case_file.empty() ? Config() : load_case(o->case_file, o->sets);
@@ -73,6 +82,29 @@ Command add_calibrate_command(CLI::App& root)
             insert_petsc_options(c, o->petsc_options);
             if (o->max_evals < 1)
               throw InputError(fmt::format("--max-evals = {} must be >= 1", o->max_evals));
+            const double h = c.number("geometry.mesh_size");
+            if (o->correction_mesh_size != 0
+                && !(o->correction_mesh_size > 0 && o->correction_mesh_size < h))
+              throw InputError(fmt::format("--correction-mesh-size = {} must be in (0, {}) m: "
+                                           "finer than the fit's geometry.mesh_size",
+                                           o->correction_mesh_size, h));
+            if (o->correction_mesh_size > 0)
+            {
+              Config fine = c; // the schema's range for mesh sizes, named in the message
+              fine.set("geometry.mesh_size", o->correction_mesh_size);
+              fine.validate();
+            }
+            {
+              // Checked here, before a long fit (render.py checks it again).
+              int w = 0, ht = 0;
+              char rest = 0;
+              if (std::sscanf(o->size.c_str(), "%dx%d%c", &w, &ht, &rest) != 2 || w < 100
+                  || w > 8000 || ht < 100 || ht > 8000)
+                throw InputError(fmt::format("--size '{}' must be WIDTHxHEIGHT with both in [100, "
+                                             "8000] pixels, e.g. 800x600",
+                                             o->size));
+            }
+            check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
             const auto data = calibration::read_measurements(o->measurements);
             const auto fit = calibration::parse_fit(o->fit, c);
             calibration::check_algorithm(o->algorithm);
@@ -84,15 +116,18 @@ Command add_calibrate_command(CLI::App& root)
             co.checkpoint = o->checkpoint.empty() ? out + ".checkpoint.json" : o->checkpoint;
             co.resume = o->resume;
             co.measurements_source = o->measurements;
+            co.morph = !o->remesh;
+            co.correction_mesh_size = o->correction_mesh_size;
             log::info("calibrating [{}] with {} against {} measurements in {} postures", o->fit,
                       o->algorithm, data.items.size(), data.postures.size());
             const auto res = calibration::calibrate(c, data, fit, co, MPI_COMM_WORLD);
-            calibration::write_calibration(res, out, MPI_COMM_WORLD);
+            calibration::write_calibration(res, out, MPI_COMM_WORLD, {true, o->size});
             if (log::is_root())
             {
               std::cout << calibration::calibration_table(res.report);
               std::cout << "results written to " << out
-                        << "/ (calibrated.toml for `breastsim simulate`, report.json)\n";
+                        << "/ (calibrated.toml for `breastsim simulate`, report.json, "
+                           "misfit_history.png, measurements.png, view_<posture>.png)\n";
             }
             return 0;
           }};

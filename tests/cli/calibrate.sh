@@ -5,6 +5,7 @@
 # leave no output folder.
 set -u
 BIN="$1"
+CHECK="/usr/bin/python3 $(cd "$(dirname "$0")/../viewer" && pwd)/png_check.py"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 fails=0
@@ -13,9 +14,18 @@ fail() { echo "FAIL $*"; fails=$((fails + 1)); }
 printf '[geometry]\nmesh_size = 0.016\n[tissue]\nmu = 300.0\n' > start.toml
 printf '[geometry]\nmesh_size = 0.016\n' > truth.toml
 "$BIN" -q measure truth.toml --mesh-size 0.012 --noise 0.0005 --seed 3 --out m.json || fail "measure"
-"$BIN" -q calibrate m.json --case start.toml --fit mu --max-evals 30 --out fit >calib.out 2>calib.err \
-  || { fail "calibrate"; cat calib.err; }
+"$BIN" -q calibrate m.json --case start.toml --fit mu --max-evals 30 --size 640x480 --out fit \
+  >calib.out 2>calib.err || { fail "calibrate"; cat calib.err; }
 [ -f fit/calibrated.toml ] && [ -f fit/report.json ] || fail "calibrate outputs missing"
+# Pictures next to the JSON: plots of the fit and the calibrated breast per measured posture.
+for png in misfit_history measurements overview view_standing view_supine view_all_fours; do
+  $CHECK size "fit/$png.png" 640 480 || fail "picture $png.png"
+done
+for png in misfit_history measurements view_standing view_supine; do
+  $CHECK drawn "fit/$png.png" || fail "picture $png.png is blank"
+done
+$CHECK differ fit/view_standing.png fit/view_supine.png || fail "standing and supine pictures are the same"
+$CHECK differ fit/misfit_history.png fit/measurements.png || fail "the two plots are the same"
 [ -f fit.checkpoint.json ] || fail "no checkpoint written"
 grep -q "mu " calib.out || fail "no result table"
 "$BIN" -q simulate fit/calibrated.toml --out sim >sim.out 2>sim.err || { fail "simulate of calibrated.toml"; cat sim.err; }
@@ -39,5 +49,7 @@ expect_error nan "not valid JSON" '{"units": "SI", "postures": [{"name": "standi
 expect_error rho_mu "only mu/rho is identifiable" "$ok" --fit rho,mu
 expect_error algorithm "--algorithm 'newton' is unknown" "$ok" --algorithm newton
 expect_error resume "checkpoint" "$ok" --resume --checkpoint "$work/none.json"
+expect_error size "--size '12x7'" "$ok" --size 12x7
+expect_error correction "--correction-mesh-size = 0.02" "$ok" --correction-mesh-size 0.02
 
 [ "$fails" -eq 0 ] && echo "all calibrate CLI checks passed" || { echo "$fails failures"; exit 1; }
