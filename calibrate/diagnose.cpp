@@ -373,14 +373,10 @@ std::vector<Region> locate_regions(const Recording& rec, const FitState& f,
   return regions;
 }
 
-Diagnosis diagnose(const Recording& rec, const Config& current_in, const DiagnoseOptions& o,
-                   MPI_Comm comm)
+namespace
 {
-  const auto t0 = std::chrono::steady_clock::now();
-  Config current = current_in;
-  for (const auto& [k, v] : rec.known)
-    current.set(k == "rho" ? "tissue.rho" : "geometry." + k, v);
-  current.validate();
+void check_options(const DiagnoseOptions& o)
+{
   for (const auto& name : o.candidates)
     candidate(name); // unknown names: InputError
   if (!(o.alpha > 0 && o.alpha < 0.5))
@@ -392,142 +388,180 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
                                  o.mesh_ratio));
   if (o.max_rounds < 1 || o.max_rounds > 10)
     throw InputError(fmt::format("--max-rounds = {} is out of range: allowed [1, 10]", o.max_rounds));
+}
 
-  Evaluator ev(rec, comm);
-  std::vector<Free> frees = frees_from_fit(o.fit, current);
+Config finer(const Config& c, double ratio)
+{
+  Config f = c;
+  f.set("geometry.mesh_size", c.number("geometry.mesh_size") / ratio);
+  f.validate();
+  return f;
+}
+
+/// Numerical noise floor of the diagnosis mesh at the fitted state: the RMS
+/// change e_h of each posture's distances (and of each landmark) on a mesh
+/// `ratio` times finer; sigma_eff^2 = sigma^2 + e_h^2 per residual.
+std::vector<double> noise_floor(Evaluator& ev, Evaluator& fine_ev, const Recording& rec,
+                                const FitState& state, double ratio, Diagnosis& d)
+{
+  log::info("numerical noise floor: solving the fitted model on a mesh {:g} times finer", ratio);
+  const PointEvaluation ef = fine_ev(finer(state.config, ratio));
+  const PointEvaluation ec = ev(state.config);
+  std::vector<double> sigma;
+  std::size_t k = 0;
+  for (std::size_t p = 0; p < rec.postures.size(); ++p)
+  {
+    double ss = 0;
+    const std::size_t n = rec.postures[p].points.size();
+    for (std::size_t i = 0; i < n; ++i, ++k)
+      ss += std::pow(ef.raw[k] - ec.raw[k], 2);
+    d.mesh_error[p] = std::sqrt(ss / n);
+    d.sigma_eff[p] = std::hypot(rec.noise_sigma, d.mesh_error[p]);
+    sigma.insert(sigma.end(), n, d.sigma_eff[p]);
+    log::info("numerical noise floor of posture '{}': {:.3f} mm (sigma_eff {:.3f} mm)",
+              rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p]);
+  }
+  for (const auto& P : rec.postures)
+    if (P.nipple)
+    {
+      double ss = 0;
+      for (int c = 0; c < 3; ++c, ++k)
+        ss += std::pow(ef.raw[k] - ec.raw[k], 2);
+      sigma.insert(sigma.end(), 3, std::hypot(rec.noise_sigma, std::sqrt(ss / 3)));
+    }
+  return sigma;
+}
+
+/// Score statistic of candidate `c` at q = 0 (diagnose.hpp, step 3), with the
+/// LR the mesh error `mesh_e` alone would give it (empty: none).
+CandidateScore score(Evaluator& ev, const Candidate& c, const FitState& state,
+                     const std::vector<double>& mesh_e, double kappa)
+{
+  CandidateScore s;
+  s.name = c.name;
+  const double probe = 0.05 * c.typical;
+  try
+  {
+    const PointEvaluation e = ev(c.with(state.config, probe));
+    std::vector<double> j(state.r.size());
+    for (std::size_t i = 0; i < j.size(); ++i)
+      j[i] = (e.r[i] - state.r[i]) / probe;
+    const auto Pj = project_out(state.J, j);
+    double U = 0, I = 0, Ue = 0;
+    for (std::size_t i = 0; i < j.size(); ++i)
+    {
+      U -= Pj[i] * state.r[i];
+      I += Pj[i] * Pj[i];
+      if (!mesh_e.empty())
+        Ue -= Pj[i] * mesh_e[i];
+    }
+    s.score = (U > 0 && I > 0) ? U * U / I : 0.0;
+    s.p_value = I > 0 ? normal_tail(U / std::sqrt(I)) : 1.0;
+    s.estimate = I > 0 ? U / I : 0.0;
+    // Extrapolated to the error against the exact solution (Richardson,
+    // order 1: kappa = 1/(1 - 1/r)).
+    s.mesh_allowance = (Ue > 0 && I > 0) ? kappa * kappa * Ue * Ue / I : 0.0;
+  }
+  catch (const SolveError& err)
+  {
+    log::warn("candidate '{}': the probe solve failed ({}); not scored", c.name, err.what());
+  }
+  log::info("candidate '{}': score {:.1f} (one-sided p = {:.2g}), linearised {} = {:.3g} {}, "
+            "mesh-error allowance {:.1f}",
+            s.name, s.score, s.p_value, c.parameter, s.estimate, c.unit, s.mesh_allowance);
+  return s;
+}
+
+/// Values and intervals of a found model on the finer mesh, with the
+/// numerical part |ln p_h - ln p_{h/r}| / (r - 1) (Richardson, order 1)
+/// added in quadrature to the statistical SE of ln p.
+FitState with_numerical_uncertainty(const FitState& coarse, const FitState& fine, double ratio,
+                                    std::vector<double>& se_numerical)
+{
+  FitState f = fine;
+  auto& u = f.uncertainty;
+  for (std::size_t i = 0; i < f.values.size() && i < u.se_log.size(); ++i)
+  {
+    const double se_num = std::abs(std::log(f.values[i] / coarse.values[i])) / (ratio - 1);
+    se_numerical.push_back(se_num);
+    u.se_log[i] = std::hypot(u.se_log[i], se_num);
+    u.interval[i] = {f.values[i] * std::exp(-1.96 * u.se_log[i]),
+                     f.values[i] * std::exp(1.96 * u.se_log[i])};
+  }
+  return f;
+}
+} // namespace
+
+Diagnosis diagnose(const Recording& rec, const Config& current_in, const DiagnoseOptions& o,
+                   MPI_Comm comm)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  check_options(o);
+  Config current = current_in;
+  for (const auto& [k, v] : rec.known)
+    current.set(k == "rho" ? "tissue.rho" : "geometry." + k, v);
+  current.validate();
+
   Diagnosis d;
   d.noise_sigma = rec.noise_sigma;
+  d.mesh_error.assign(rec.postures.size(), 0.0);
+  d.sigma_eff.assign(rec.postures.size(), rec.noise_sigma);
+  Evaluator ev(rec, comm);
+  std::unique_ptr<Evaluator> fine_ev; // the finer mesh of the noise floor
+  std::vector<Free> frees = frees_from_fit(o.fit, current);
   std::vector<double> y0;
   for (const auto& f : frees)
     y0.push_back(std::log(std::clamp(f.start, f.lo, f.hi)));
+
+  // 1-2. Fit the current model; noise floor; fit again with sigma_eff.
   FitState state = fit(ev, rec, current, frees, y0, o.lsq, "fit of the current model");
-  const std::size_t np = rec.postures.size();
-  d.mesh_error.assign(np, 0.0);
-  d.sigma_eff.assign(np, rec.noise_sigma);
-  std::unique_ptr<Evaluator> fine_ev;
-  std::vector<double> sigma;
   if (o.mesh_ratio > 1)
   {
-    // Numerical noise floor of the diagnosis mesh, measured at the fitted
-    // current model against a mesh r times finer; then the fit is repeated
-    // with sigma_eff^2 = sigma^2 + e_h^2.
-    Config fine = state.config;
-    fine.set("geometry.mesh_size", state.config.number("geometry.mesh_size") / o.mesh_ratio);
-    fine.validate();
-    log::info("numerical noise floor: solving the fitted model on a mesh {:g} times finer",
-              o.mesh_ratio);
     fine_ev = std::make_unique<Evaluator>(rec, comm);
-    const PointEvaluation ef = (*fine_ev)(fine);
-    const PointEvaluation ec = ev(state.config);
-    std::size_t k = 0;
-    for (std::size_t p = 0; p < np; ++p)
-    {
-      double ss = 0;
-      const std::size_t n = rec.postures[p].points.size();
-      for (std::size_t i = 0; i < n; ++i, ++k)
-        ss += std::pow(ef.raw[k] - ec.raw[k], 2);
-      d.mesh_error[p] = std::sqrt(ss / n);
-      d.sigma_eff[p] = std::hypot(rec.noise_sigma, d.mesh_error[p]);
-      sigma.insert(sigma.end(), n, d.sigma_eff[p]);
-    }
-    for (std::size_t p = 0; p < np; ++p)
-      if (rec.postures[p].nipple)
-      {
-        double ss = 0;
-        for (int c = 0; c < 3; ++c, ++k)
-          ss += std::pow(ef.raw[k] - ec.raw[k], 2);
-        sigma.insert(sigma.end(), 3, std::hypot(rec.noise_sigma, std::sqrt(ss / 3)));
-      }
-    for (std::size_t p = 0; p < np; ++p)
-      log::info("numerical noise floor of posture '{}': {:.3f} mm (sigma_eff {:.3f} mm)",
-                rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p]);
+    const auto sigma = noise_floor(ev, *fine_ev, rec, state, o.mesh_ratio, d);
     ev.set_sigma(sigma);
     fine_ev->set_sigma(sigma);
     state = fit(ev, rec, current, frees, log_values(state), o.lsq, "fit of the current model");
   }
-  std::vector<std::string> tested_names;
+  const double kappa = o.mesh_ratio > 1 ? 1.0 / (1.0 - 1.0 / o.mesh_ratio) : 0.0;
 
   for (int round = 0; round < o.max_rounds; ++round)
   {
     Round rd;
     rd.before = state;
+    // 4. Where.
     rd.regions = locate_regions(rec, state, d.sigma_eff, o.neighbours, o.region_z);
-    // Score every applicable candidate at its null value.
-    std::vector<const Candidate*> pool;
+    if (!o.discover)
+    {
+      d.fit_only = true;
+      d.rounds.push_back(rd);
+      break;
+    }
+    // 5. What: score every applicable candidate at its null value, with the
+    // share of the mesh error e = r_h - r_{h/r} along its direction.
+    std::vector<double> mesh_e;
+    if (fine_ev)
+    {
+      const PointEvaluation ef = (*fine_ev)(finer(state.config, o.mesh_ratio));
+      for (std::size_t i = 0; i < state.r.size(); ++i)
+        mesh_e.push_back(state.r[i] - ef.r[i]);
+    }
+    std::size_t tested = 0;
     for (const auto& c : candidate_library())
       if (c.applicable(state.config)
           && (o.candidates.empty()
               || std::find(o.candidates.begin(), o.candidates.end(), c.name) != o.candidates.end()))
-        pool.push_back(&c);
-    // The discretisation error of the diagnosis mesh at this state, whitened:
-    // e = r_h - r_{h/r} (what the residual would be if the finer mesh were
-    // the truth). Its share along a candidate's direction is an effect the
-    // candidate could "explain" without any physics.
-    std::vector<double> mesh_e;
-    if (fine_ev)
-    {
-      Config fine = state.config;
-      fine.set("geometry.mesh_size", state.config.number("geometry.mesh_size") / o.mesh_ratio);
-      fine.validate();
-      const PointEvaluation ef = (*fine_ev)(fine);
-      for (std::size_t i = 0; i < state.r.size(); ++i)
-        mesh_e.push_back(state.r[i] - ef.r[i]);
-    }
-    const double kappa = o.mesh_ratio > 1 ? 1.0 / (1.0 - 1.0 / o.mesh_ratio) : 0.0;
-    for (const Candidate* c : pool)
-    {
-      CandidateScore s;
-      s.name = c->name;
-      const double probe = 0.05 * c->typical;
-      try
       {
-        const PointEvaluation e = ev(c->with(state.config, probe));
-        std::vector<double> j(state.r.size());
-        for (std::size_t i = 0; i < j.size(); ++i)
-          j[i] = (e.r[i] - state.r[i]) / probe;
-        const auto Pj = project_out(state.J, j);
-        double U = 0, I = 0;
-        for (std::size_t i = 0; i < j.size(); ++i)
-        {
-          U -= Pj[i] * state.r[i];
-          I += Pj[i] * Pj[i];
-        }
-        s.score = (U > 0 && I > 0) ? U * U / I : 0.0;
-        s.p_value = I > 0 ? normal_tail(U / std::sqrt(I)) : 1.0;
-        s.estimate = I > 0 ? U / I : 0.0;
-        if (!mesh_e.empty() && I > 0)
-        {
-          // LR the mesh error alone would give, extrapolated to the error
-          // against the exact solution (Richardson, order 1: kappa = 1/(1 - 1/r)).
-          double Ue = 0;
-          for (std::size_t i = 0; i < j.size(); ++i)
-            Ue -= Pj[i] * mesh_e[i];
-          s.mesh_allowance = Ue > 0 ? kappa * kappa * Ue * Ue / I : 0.0;
-        }
+        rd.scores.push_back(score(ev, c, state, mesh_e, kappa));
+        ++tested;
       }
-      catch (const SolveError& err)
-      {
-        log::warn("candidate '{}': the probe solve failed ({}); not scored", c->name, err.what());
-        s.score = 0;
-        s.p_value = 1;
-      }
-      log::info("candidate '{}': score {:.1f} (one-sided p = {:.2g}), linearised {} = {:.3g} {}, "
-                "mesh-error allowance {:.1f}",
-                s.name, s.score, s.p_value, c->parameter, s.estimate, c->unit, s.mesh_allowance);
-      rd.scores.push_back(s);
-    }
     std::sort(rd.scores.begin(), rd.scores.end(),
               [](const auto& a, const auto& b) { return a.score > b.score; });
-    const double level = o.alpha / std::max<std::size_t>(pool.size(), 1);
+    const double level = o.alpha / std::max<std::size_t>(tested, 1);
     rd.critical = boundary_lr_critical(level);
-    if (rd.scores.empty() || rd.scores[0].p_value >= level)
-    {
-      d.rounds.push_back(rd);
-      break; // nothing significant
-    }
-    // Refit with each of the (at most o.refits) best-scoring significant
-    // candidates; the largest likelihood ratio wins (the score is a local,
-    // linearised ranking; the refit is not).
+    // 6. Model it: refit the (at most o.refits) best-scoring significant
+    // candidates; the largest margin over its critical value wins (the
+    // score is a local, linearised ranking; the refit is not).
     std::vector<Free> trial;
     for (std::size_t k = 0; k < rd.scores.size() && k < static_cast<std::size_t>(o.refits); ++k)
     {
@@ -539,7 +573,18 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
       t.push_back(free_candidate(cand));
       auto y = log_values(state);
       y.push_back(std::log(std::clamp(sc.estimate, cand.typical * 1e-3, cand.typical * 1e2)));
-      FitState after = fit(ev, rec, current, t, y, o.lsq, "refit with " + cand.name);
+      FitState after;
+      try
+      {
+        after = fit(ev, rec, current, t, y, o.lsq, "refit with " + cand.name);
+      }
+      catch (const SolveError& err)
+      {
+        log::warn("candidate '{}': the refit failed ({}); skipped", cand.name, err.what());
+        continue;
+      }
+      // 7. Accept: LR against the boundary-corrected critical value plus
+      // the candidate's mesh-error allowance.
       const double lr = state.chi2 - after.chi2;
       const double critical = rd.critical + sc.mesh_allowance;
       log::info("candidate '{}': LR = {:.1f} against the critical {:.1f} (level {:.2g}, mesh-error "
@@ -555,101 +600,31 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
         trial = t;
       }
     }
-    rd.accepted = rd.lr > rd.critical_used;
-    log::info("best refit '{}': LR = {:.1f}: {}", rd.tested, rd.lr,
-              rd.accepted ? "accepted" : "rejected");
-    const Candidate& best = candidate(rd.tested);
+    rd.accepted = !rd.tested.empty() && rd.lr > rd.critical_used;
+    if (!rd.tested.empty())
+      log::info("best refit '{}': LR = {:.1f}: {}", rd.tested, rd.lr,
+                rd.accepted ? "accepted" : "rejected");
     d.rounds.push_back(rd);
     if (!rd.accepted)
-      break;
-    d.discovered.push_back(best.name);
+      break; // 8. nothing (more) is significant
+    d.discovered.push_back(rd.tested);
     frees = trial;
     current = rd.after.config; // the candidate term is on from now on
     state = rd.after;
   }
   d.final_fit = state;
+  // 9. Numerical uncertainty of the found values.
   if (fine_ev && !d.discovered.empty())
   {
-    // Numerical uncertainty of the fitted values: refit on the finer mesh;
-    // the change of ln p estimates the diagnosis mesh's bias. Reported: the
-    // finer mesh's values, with the remaining bias of that mesh
-    // (Richardson, order 1: |Delta ln p| / (r - 1)) added in quadrature to
-    // the statistical standard error.
-    Config fine = current;
-    fine.set("geometry.mesh_size", current.number("geometry.mesh_size") / o.mesh_ratio);
-    fine.validate();
-    const FitState f = fit(*fine_ev, rec, fine, frees, log_values(state), o.lsq,
-                           "refit on the finer mesh");
-    d.final_fit = f;
-    auto& u = d.final_fit.uncertainty;
-    for (std::size_t i = 0; i < f.values.size() && i < u.se_log.size(); ++i)
-    {
-      const double se_num = std::abs(std::log(f.values[i] / state.values[i])) / (o.mesh_ratio - 1);
-      d.se_numerical.push_back(se_num);
-      u.se_log[i] = std::hypot(u.se_log[i], se_num);
-      u.interval[i] = {f.values[i] * std::exp(-1.96 * u.se_log[i]),
-                       f.values[i] * std::exp(1.96 * u.se_log[i])};
-    }
+    const FitState f = fit(*fine_ev, rec, finer(current, o.mesh_ratio), frees, log_values(state),
+                           o.lsq, "refit on the finer mesh");
+    d.final_fit = with_numerical_uncertainty(state, f, o.mesh_ratio, d.se_numerical);
   }
   if (fine_ev)
     d.posture_solves += fine_ev->posture_solves();
   d.posture_solves += ev.posture_solves();
   d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-  // The verdict in plain words.
-  const FitState& first = d.rounds.front().before;
-  const double noise_mm = 1e3 * rec.noise_sigma;
-  auto rms_all = [](const FitState& s)
-  {
-    double ss = 0;
-    std::size_t n = 0;
-    for (const auto& v : s.distances)
-      for (double x : v)
-      {
-        ss += x * x;
-        ++n;
-      }
-    return std::sqrt(ss / std::max<std::size_t>(n, 1));
-  };
-  const bool at_noise = d.final_fit.gof_p > o.alpha;
-  if (d.discovered.empty())
-  {
-    if (first.gof_p > o.alpha)
-      d.verdict = fmt::format("The current model explains the recording: RMS distance {:.3f} mm "
-                              "against the noise {:.3f} mm (chi2/dof = {:.3f}, p = {:.2g}); no "
-                              "candidate physics is significant at {:g}. Nothing was changed.",
-                              1e3 * rms_all(first), noise_mm, first.chi2 / first.dof,
-                              first.gof_p, o.alpha);
-    else
-      d.verdict = fmt::format("The residual is systematic (RMS {:.3f} mm against the noise {:.3f} "
-                              "mm, chi2/dof = {:.3f}, p = {:.2g}) but no candidate of the library "
-                              "explains it significantly: the missing physics is outside the "
-                              "library, or a known parameter is wrong. Nothing was changed.",
-                              1e3 * rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p);
-  }
-  else
-  {
-    std::string what;
-    for (const auto& name : d.discovered)
-    {
-      const Candidate& c = candidate(name);
-      const auto& f = d.final_fit;
-      const std::size_t i = std::find(f.names.begin(), f.names.end(), c.parameter) - f.names.begin();
-      what += fmt::format("{}{} ({}): {} = {:.4g} {} (95 % interval [{:.4g}, {:.4g}])",
-                          what.empty() ? "" : "; ", name, c.physics, c.parameter, f.values[i],
-                          c.unit, f.uncertainty.interval[i][0], f.uncertainty.interval[i][1]);
-    }
-    d.verdict = fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise "
-                            "{:.3f} mm); {}",
-                            what, 1e3 * rms_all(first), 1e3 * rms_all(d.final_fit), noise_mm,
-                            at_noise ? fmt::format("the remaining residual is at the noise level "
-                                                   "(chi2/dof = {:.3f}, p = {:.2g}).",
-                                                   d.final_fit.chi2 / d.final_fit.dof, d.final_fit.gof_p)
-                                     : fmt::format("the remaining residual is still above the noise "
-                                                   "level (chi2/dof = {:.3f}, p = {:.2g}): more is "
-                                                   "missing than the library explains.",
-                                                   d.final_fit.chi2 / d.final_fit.dof, d.final_fit.gof_p));
-  }
+  d.verdict = verdict_text(d, rec, o.alpha);
   return d;
 }
 } // namespace breastsim::calibration

@@ -36,6 +36,7 @@ struct DiagnoseOptions
   std::vector<std::string> candidates; ///< library subset to test ("": every applicable one)
   double alpha = 1e-3;                 ///< false-discovery level of one round (all candidates)
   int max_rounds = 2;
+  bool discover = true;                ///< false: only fit the current model (calibration)
   int refits = 2;                      ///< significant candidates refitted per round (best LR wins)
   int neighbours = 12;                 ///< k of the neighbourhood means (localisation)
   double region_z = 4.0;               ///< |neighbourhood z| that marks a point as systematic
@@ -112,6 +113,7 @@ struct Diagnosis
   std::vector<double> se_numerical;   ///< numerical part of the SE of ln p (final_fit)
   std::vector<std::string> discovered;
   std::string verdict;                ///< plain words
+  bool fit_only = false;              ///< no candidate was tested (DiagnoseOptions::discover)
   double noise_sigma = 0;
   std::vector<double> mesh_error;     ///< e_h per posture (distances) [m]
   std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
@@ -127,6 +129,8 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
                    MPI_Comm comm);
 
 nlohmann::json to_json(const Diagnosis& d, const Recording& rec);
+/// The verdict in plain words (Diagnosis::verdict).
+std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha);
 /// The plain-words report (also printed).
 std::string report_text(const Diagnosis& d, const Recording& rec);
 /// Regions of systematic residual of one fit (neighbourhood means of the

@@ -1,5 +1,6 @@
 // The diagnosis as JSON and as plain words (declared in diagnose.hpp).
 #include "diagnose.hpp"
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -57,6 +58,63 @@ std::string fit_line(const FitState& s)
   return p.empty() ? "(no free parameter)" : p;
 }
 } // namespace
+
+std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
+{
+  const FitState& first = d.rounds.front().before;
+  const FitState& last = d.final_fit;
+  const double noise_mm = 1e3 * rec.noise_sigma;
+  auto rms_all = [](const FitState& s)
+  {
+    double ss = 0;
+    std::size_t n = 0;
+    for (const auto& v : s.distances)
+      for (double x : v)
+      {
+        ss += x * x;
+        ++n;
+      }
+    return 1e3 * std::sqrt(ss / std::max<std::size_t>(n, 1));
+  };
+  if (d.fit_only)
+    return fmt::format("Surface fit of the model: RMS distance {:.3f} mm against the noise {:.3f} mm "
+                       "(chi2/dof = {:.3f}, p = {:.2g}: {}).",
+                       rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p,
+                       first.gof_p > alpha ? "at the noise level"
+                                           : "systematic misfit; `breastsim diagnose` looks for "
+                                             "the missing physics");
+  if (d.discovered.empty())
+  {
+    if (first.gof_p > alpha)
+      return fmt::format("The current model explains the recording: RMS distance {:.3f} mm against "
+                         "the noise {:.3f} mm (chi2/dof = {:.3f}, p = {:.2g}); no candidate physics "
+                         "is significant at {:g}. Nothing was changed.",
+                         rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p, alpha);
+    return fmt::format("The residual is systematic (RMS {:.3f} mm against the noise {:.3f} mm, "
+                       "chi2/dof = {:.3f}, p = {:.2g}) but no candidate of the library explains it "
+                       "significantly: the missing physics is outside the library, or a known "
+                       "parameter is wrong. Nothing was changed.",
+                       rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p);
+  }
+  std::string what;
+  for (const auto& name : d.discovered)
+  {
+    const Candidate& c = candidate(name);
+    const std::size_t i = std::find(last.names.begin(), last.names.end(), c.parameter) - last.names.begin();
+    what += fmt::format("{}{} ({}): {} = {:.4g} {} (95 % interval [{:.4g}, {:.4g}])",
+                        what.empty() ? "" : "; ", name, c.physics, c.parameter, last.values[i],
+                        c.unit, last.uncertainty.interval[i][0], last.uncertainty.interval[i][1]);
+  }
+  const std::string rest
+      = last.gof_p > alpha
+            ? fmt::format("the remaining residual is at the noise level (chi2/dof = {:.3f}, p = {:.2g}).",
+                          last.chi2 / last.dof, last.gof_p)
+            : fmt::format("the remaining residual is still above the noise level (chi2/dof = {:.3f}, "
+                          "p = {:.2g}): more is missing than the library explains.",
+                          last.chi2 / last.dof, last.gof_p);
+  return fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm); {}",
+                     what, rms_all(first), rms_all(last), noise_mm, rest);
+}
 
 nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
 {

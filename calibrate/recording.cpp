@@ -161,6 +161,22 @@ Recording read_recording(const std::filesystem::path& file)
   return parse_recording(j, file.string());
 }
 
+bool is_recording(const std::filesystem::path& file)
+{
+  std::ifstream in(file);
+  if (!in)
+    return false;
+  try
+  {
+    const auto j = nlohmann::json::parse(in);
+    return j.is_object() && j.contains("format") && j.at("format") == recording_format;
+  }
+  catch (const nlohmann::json::parse_error&)
+  {
+    return false;
+  }
+}
+
 nlohmann::json to_json(const Recording& r)
 {
   nlohmann::json j;

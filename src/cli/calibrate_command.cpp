@@ -5,6 +5,9 @@
 #include "../log.hpp"
 #include "../output.hpp"
 #include "calibrate.hpp"
+#include "diagnose.hpp"
+#include "diagnosis_output.hpp"
+#include "recording.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
 #include "synthetic.hpp"
@@ -47,7 +50,8 @@ Command add_calibrate_command(CLI::App& root)
   auto* app = root.add_subcommand(
       "calibrate", "fit tissue/skin/spring parameters and the neutral shape to measurements in "
                    "several postures (docs/CALIBRATION.md)");
-  app->add_option("measurements", o->measurements, "measurement file (JSON, SI units)")->required();
+  app->add_option("measurements", o->measurements, "measurement file (JSON, SI units), or a 3D "
+                                                   "surface recording (breastsim-recording/1)")->required();
   app->add_option("--case", o->case_file,
                   "starting case (TOML); its values are the initial guess (default: built-in "
                   "defaults)");
@@ -105,6 +109,25 @@ Command add_calibrate_command(CLI::App& root)
                                              o->size));
             }
             check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
+            if (calibration::is_recording(o->measurements))
+            {
+              // 3D surface points: the point-to-skin fit of `diagnose`, without discovery.
+              const auto rec = calibration::read_recording(o->measurements);
+              calibration::DiagnoseOptions d;
+              d.fit = o->fit;
+              d.discover = false;
+              const std::string out
+                  = o->out.empty() ? "results/" + c.text("case.name") + "_calibrated" : o->out;
+              OutputDir dir(out, MPI_COMM_WORLD);
+              const auto res = calibration::diagnose(rec, c, d, MPI_COMM_WORLD);
+              calibration::write_diagnosis(dir.path(), res, rec, MPI_COMM_WORLD);
+              write_text(dir.path() / "calibrated.toml", res.final_fit.config.to_toml(), MPI_COMM_WORLD);
+              dir.commit();
+              if (log::is_root())
+                std::cout << calibration::report_text(res, rec) << "results written to " << out
+                          << "/ (calibrated.toml, diagnosis.json, residual maps)\n";
+              return 0;
+            }
             const auto data = calibration::read_measurements(o->measurements);
             const auto fit = calibration::parse_fit(o->fit, c);
             calibration::check_algorithm(o->algorithm);
