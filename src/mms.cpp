@@ -4,6 +4,7 @@
 #include "errors.hpp"
 #include "mesh_from_gmsh.hpp"
 #include "mesh_quality.hpp"
+#include "nested_mesh.hpp"
 #include "mms_p1.h"
 #include "mms_p2.h"
 #include <algorithm>
@@ -56,6 +57,36 @@ MmsForms mms_forms(int order)
   throw InputError(fmt::format("MMS: element order {} is not compiled in (1, 2)", order));
 }
 
+/// Move the nodes of the skin facets onto the cap's surface as gmsh's
+/// splitting does: rim nodes (y = 0) radially in the base plane to radius R,
+/// the others radially from the sphere's centre (0, H - Rs, 0) to the sphere
+/// (nodes on x = 0 stay there). Nodes already on it do not move.
+void snap_to_cap(meshes::TaggedMesh& m, double R, double H, int skin)
+{
+  const double Rs = meshes::sphere_radius(R, H), yc = H - Rs;
+  std::vector<bool> on_skin(m.num_nodes(), false);
+  for (std::size_t f = 0; f < m.facet_tags.size(); ++f)
+    if (m.facet_tags[f] == skin)
+      for (std::size_t k = 0; k < 3; ++k)
+        on_skin[m.facets[3 * f + k]] = true;
+  for (std::size_t n = 0; n < on_skin.size(); ++n)
+  {
+    if (!on_skin[n])
+      continue;
+    double* x = &m.x[3 * n];
+    if (std::abs(x[1]) < 1e-12 * R)
+    {
+      const double s = R / std::hypot(x[0], x[2]);
+      x[0] *= s, x[2] *= s;
+    }
+    else
+    {
+      const double s = Rs / std::sqrt(x[0] * x[0] + (x[1] - yc) * (x[1] - yc) + x[2] * x[2]);
+      x[0] *= s, x[1] = yc + s * (x[1] - yc), x[2] *= s;
+    }
+  }
+}
+
 double sum_all(double local, MPI_Comm comm)
 {
   double global = 0;
@@ -64,8 +95,36 @@ double sum_all(double local, MPI_Comm comm)
 }
 } // namespace
 
+MmsMeshes parse_mms_meshes(const std::string& name)
+{
+  if (name == "nested")
+    return MmsMeshes::nested;
+  if (name == "split")
+    return MmsMeshes::gmsh_split;
+  if (name == "remesh")
+    return MmsMeshes::gmsh_remesh;
+  if (name == "snapped")
+    return MmsMeshes::nested_snapped;
+  throw InputError(fmt::format("--mms-meshes: '{}' is not one of nested, split, remesh, snapped", name));
+}
+
+std::string to_string(MmsMeshes k)
+{
+  switch (k)
+  {
+  case MmsMeshes::nested:
+    return "nested";
+  case MmsMeshes::gmsh_split:
+    return "split";
+  case MmsMeshes::gmsh_remesh:
+    return "remesh";
+  default:
+    return "snapped";
+  }
+}
+
 MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
-                   bool patch)
+                   bool patch, MmsMeshes kind)
 {
   const auto t0 = std::chrono::steady_clock::now();
   const MmsForms uf = mms_forms(order);
@@ -74,15 +133,28 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   meshes::HalfCapSpec spec;
   spec.R = c.number("geometry.R");
   spec.H = c.number("geometry.H");
-  spec.mesh_size = mesh_size;
-  spec.order = order;
-  spec.refinements = refinements;
+  spec.mesh_size = kind == MmsMeshes::gmsh_remesh ? mesh_size / std::pow(2.0, refinements) : mesh_size;
+  spec.order = (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped) ? 1 : order;
+  spec.refinements = kind == MmsMeshes::gmsh_split ? refinements : 0;
   int rank;
   MPI_Comm_rank(comm, &rank);
   meshes::TaggedMesh tm;
   tm.order = order;
   if (rank == 0)
+  {
     tm = meshes::mesh_half_cap(spec, generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"));
+    if (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped)
+    {
+      for (int l = 0; l < refinements; ++l)
+      {
+        tm = refine_red(tm);
+        if (kind == MmsMeshes::nested_snapped)
+          snap_to_cap(tm, spec.R, spec.H, generated::tag("skin"));
+      }
+      if (order == 2)
+        tm = straight_p2(tm);
+    }
+  }
   TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
 
   auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
@@ -253,22 +325,19 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   return L;
 }
 
-MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm)
+MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm,
+                   MmsMeshes kind)
 {
-  // Each level is meshed by gmsh at mesh_size / 2^l, not by gmsh's uniform
-  // splitting (geometry.refinements): on the split meshes (boundary nodes
-  // snapped to the sphere) the P1 MMS orders were only L2 1.2, H1 0.6-0.8
-  // (mesh_size 16 mm, refinements 0-2; docs/CONVERGENCE.md). The meshes are
-  // not nested, so the mesh size of a level is h_eff = (V / cells)^(1/3).
   MmsStudy s;
   s.order = order;
   s.mesh_size = mesh_size;
+  s.meshes = kind;
   const double R = c.number("geometry.R"), H = c.number("geometry.H");
   const double volume = M_PI * H * (3 * R * R + H * H) / 12; // the half cap
   for (int l = 0; l < levels; ++l)
   {
     const double hl = mesh_size / std::pow(2.0, l);
-    s.levels.push_back(solve_mms(c, order, hl, 0, comm));
+    s.levels.push_back(solve_mms(c, order, mesh_size, l, comm, false, kind));
     auto& L = s.levels.back();
     L.refinements = l;
     L.mesh_size = hl;
@@ -292,6 +361,7 @@ nlohmann::json to_json(const MmsStudy& s)
   nlohmann::json j;
   j["element_order"] = s.order;
   j["mesh_size"] = s.mesh_size;
+  j["meshes"] = to_string(s.meshes);
   j["expected_order_l2"] = s.order + 1;
   j["expected_order_h1"] = s.order;
   for (const auto& L : s.levels)
@@ -307,8 +377,8 @@ nlohmann::json to_json(const MmsStudy& s)
 
 std::string mms_table(const MmsStudy& s)
 {
-  std::string out = fmt::format("MMS P{} (mesh_size {:g} m): expected orders L2 {}, H1 {}\n",
-                                s.order, s.mesh_size, s.order + 1, s.order);
+  std::string out = fmt::format("MMS P{} ({} meshes from mesh_size {:g} m): expected orders L2 {}, H1 {}\n",
+                                s.order, to_string(s.meshes), s.mesh_size, s.order + 1, s.order);
   out += fmt::format("{:>5} {:>8} {:>8} {:>10} {:>12} {:>12} {:>8} {:>8}\n", "level", "cells",
                      "dofs", "h_eff[mm]", "L2 error", "H1 error", "p(L2)", "p(H1)");
   for (std::size_t i = 0; i < s.levels.size(); ++i)
