@@ -6,6 +6,7 @@
 #include "surgery.hpp"
 #include "breastsim_registry.hpp"
 #include "mesh_from_gmsh.hpp"
+#include "nested_mesh.hpp"
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -91,10 +92,42 @@ Richardson richardson(double q0, double q1, double q2, double r, double Fs)
 namespace
 {
 /// Pre-operative stage: the standing posture of the case's cap at level l.
-LevelValues solve_preop_level(const Config& c, MPI_Comm comm, std::int64_t& cells,
-                              std::int64_t& dofs)
+/// The case's cap refined `refinements` times by red refinement, new skin
+/// nodes snapped onto the cap (P2: straight midpoints, then snapped too).
+TaggedDolfinxMesh red_refined_cap(const Config& c, MPI_Comm comm)
 {
-  Model model(build_neutral_mesh(c, comm), Constraints{true, c.flag("base.fixed")});
+  auto spec = cap_spec(c);
+  const int order = spec.order, levels = spec.refinements;
+  spec.order = 1;
+  spec.refinements = 0;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh m;
+  m.order = order;
+  if (rank == 0)
+  {
+    const int skin = generated::tag("skin");
+    m = meshes::mesh_half_cap(spec, generated::tag("base"), skin, generated::tag("symmetry"));
+    for (int l = 0; l < levels; ++l)
+    {
+      m = refine_red(m);
+      snap_to_cap(m, spec.R, spec.H, skin);
+    }
+    if (order == 2)
+    {
+      m = straight_p2(m);
+      snap_to_cap(m, spec.R, spec.H, skin);
+    }
+  }
+  return to_dolfinx(comm, m, order);
+}
+
+LevelValues solve_preop_level(const Config& c, MPI_Comm comm, std::int64_t& cells,
+                              std::int64_t& dofs, ConvergeRefinement refine)
+{
+  Model model(refine == ConvergeRefinement::red ? red_refined_cap(c, comm)
+                                                : build_neutral_mesh(c, comm),
+              Constraints{true, c.flag("base.fixed")});
   apply_parameters(c, model);
   NewtonSolver newton(model, newton_options(c));
   ObservableProbe probe(model, {0, c.number("geometry.H"), 0});
@@ -156,7 +189,8 @@ std::vector<std::string> convergence_quantities()
 std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
                                             const std::vector<int>& orders,
                                             const std::vector<std::string>& quantities,
-                                            MPI_Comm comm, ConvergeStage stage)
+                                            MPI_Comm comm, ConvergeStage stage,
+                                            ConvergeRefinement refine)
 {
   if (levels < 3)
     throw InputError(fmt::format("--levels: at least 3 levels are needed (got {})", levels));
@@ -168,6 +202,9 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
   for (const auto& q : quantities)
     if (quantity(q).surgery_only && stage != ConvergeStage::surgery)
       throw InputError(fmt::format("--quantity: '{}' needs --stage surgery", q));
+  if (stage == ConvergeStage::surgery && refine == ConvergeRefinement::red)
+    throw InputError("--refine red: only with --stage preop (the surgery stage refines the "
+                     "incised mesh with gmsh's splitting)");
   if (stage == ConvergeStage::surgery)
     meshes::incision_geometry(cap_spec(c0), incision_spec(c0)); // rejects bad incisions first
   std::vector<ConvergenceStudy> out;
@@ -175,6 +212,7 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
   {
     ConvergenceStudy s;
     s.element_order = p;
+    s.refinement = refine == ConvergeRefinement::red ? "red" : "gmsh";
     s.posture = stage == ConvergeStage::surgery ? "standing (post-operative)" : "standing";
     for (const auto& q : quantities)
       s.quantities.push_back({q, quantity(q).unit, {}, {}, {}});
@@ -188,7 +226,7 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
       spdlog::info("converge: P{} refinement {} ({})", p, l, s.posture);
       std::int64_t cells = 0, dofs = 0;
       const LevelValues v = stage == ConvergeStage::surgery ? solve_surgery_level(c, comm, cells, dofs)
-                                                            : solve_preop_level(c, comm, cells, dofs);
+                                                            : solve_preop_level(c, comm, cells, dofs, refine);
       s.refinements.push_back(l);
       s.cells.push_back(cells);
       s.dofs.push_back(dofs);
@@ -214,6 +252,7 @@ nlohmann::json to_json(const ConvergenceStudy& s)
   nlohmann::json j;
   j["element_order"] = s.element_order;
   j["posture"] = s.posture;
+  j["refinement"] = s.refinement;
   j["refinement_ratio"] = 2;
   j["safety_factor"] = 1.25;
   j["refinements"] = s.refinements;
@@ -241,7 +280,8 @@ nlohmann::json to_json(const ConvergenceStudy& s)
 
 std::string convergence_table(const ConvergenceStudy& s)
 {
-  std::string out = fmt::format("P{} posture {}: levels (cells)", s.element_order, s.posture);
+  std::string out = fmt::format("P{} posture {}, {} refinement: levels (cells)", s.element_order,
+                                s.posture, s.refinement);
   for (std::size_t i = 0; i < s.cells.size(); ++i)
     out += fmt::format(" {} ({})", s.refinements[i], s.cells[i]);
   out += "\n";

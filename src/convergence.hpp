@@ -38,6 +38,7 @@ struct ConvergenceStudy
 {
   int element_order = 1;
   std::string posture;
+  std::string refinement = "gmsh"; ///< "gmsh" (splitting) or "red"
   std::vector<int> refinements;
   std::vector<std::int64_t> cells, dofs;
   std::vector<double> seconds;
@@ -53,6 +54,17 @@ enum class ConvergeStage
   surgery
 };
 
+/// How the levels are refined: gmsh's splitting (geometry.refinements), or
+/// red refinement of the level-0 gmsh mesh with the new skin nodes moved onto
+/// the cap (src/nested_mesh.hpp; preop stage only). gmsh's splitting does
+/// not halve the longest edge at the first split and lowers the smallest
+/// dihedral angle (docs/CONVERGENCE.md).
+enum class ConvergeRefinement
+{
+  gmsh,
+  red
+};
+
 /// Quantities `converge` knows: the observables of the solved posture, and
 /// with the surgery stage also resected_volume and max_gap (suture).
 std::vector<std::string> convergence_quantities();
@@ -64,7 +76,8 @@ std::vector<std::string> convergence_quantities();
 std::vector<ConvergenceStudy> converge_case(const Config& c, int levels,
                                             const std::vector<int>& orders,
                                             const std::vector<std::string>& quantities,
-                                            MPI_Comm comm, ConvergeStage stage = ConvergeStage::preop);
+                                            MPI_Comm comm, ConvergeStage stage = ConvergeStage::preop,
+                                            ConvergeRefinement refine = ConvergeRefinement::gmsh);
 
 nlohmann::json to_json(const ConvergenceStudy& s);
 std::string convergence_table(const ConvergenceStudy& s);

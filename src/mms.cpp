@@ -57,36 +57,6 @@ MmsForms mms_forms(int order)
   throw InputError(fmt::format("MMS: element order {} is not compiled in (1, 2)", order));
 }
 
-/// Move the nodes of the skin facets onto the cap's surface as gmsh's
-/// splitting does: rim nodes (y = 0) radially in the base plane to radius R,
-/// the others radially from the sphere's centre (0, H - Rs, 0) to the sphere
-/// (nodes on x = 0 stay there). Nodes already on it do not move.
-void snap_to_cap(meshes::TaggedMesh& m, double R, double H, int skin)
-{
-  const double Rs = meshes::sphere_radius(R, H), yc = H - Rs;
-  std::vector<bool> on_skin(m.num_nodes(), false);
-  for (std::size_t f = 0; f < m.facet_tags.size(); ++f)
-    if (m.facet_tags[f] == skin)
-      for (std::size_t k = 0; k < 3; ++k)
-        on_skin[m.facets[3 * f + k]] = true;
-  for (std::size_t n = 0; n < on_skin.size(); ++n)
-  {
-    if (!on_skin[n])
-      continue;
-    double* x = &m.x[3 * n];
-    if (std::abs(x[1]) < 1e-12 * R)
-    {
-      const double s = R / std::hypot(x[0], x[2]);
-      x[0] *= s, x[2] *= s;
-    }
-    else
-    {
-      const double s = Rs / std::sqrt(x[0] * x[0] + (x[1] - yc) * (x[1] - yc) + x[2] * x[2]);
-      x[0] *= s, x[1] = yc + s * (x[1] - yc), x[2] *= s;
-    }
-  }
-}
-
 double sum_all(double local, MPI_Comm comm)
 {
   double global = 0;

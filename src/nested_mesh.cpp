@@ -1,4 +1,5 @@
 #include "nested_mesh.hpp"
+#include "../meshes/half_cap.hpp"
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -112,5 +113,32 @@ TaggedMesh straight_p2(const TaggedMesh& m)
   }
   r.facet_tags = m.facet_tags;
   return r;
+}
+
+void snap_to_cap(TaggedMesh& m, double R, double H, int skin)
+{
+  const double Rs = meshes::sphere_radius(R, H), yc = H - Rs;
+  const std::size_t npf = m.nodes_per_facet();
+  std::vector<bool> on_skin(m.num_nodes(), false);
+  for (std::size_t f = 0; f < m.facet_tags.size(); ++f)
+    if (m.facet_tags[f] == skin)
+      for (std::size_t k = 0; k < npf; ++k)
+        on_skin[m.facets[npf * f + k]] = true;
+  for (std::size_t n = 0; n < on_skin.size(); ++n)
+  {
+    if (!on_skin[n])
+      continue;
+    double* x = &m.x[3 * n];
+    if (std::abs(x[1]) < 1e-12 * R) // rim: x^2 + z^2 = R^2 in y = 0
+    {
+      const double s = R / std::hypot(x[0], x[2]);
+      x[0] *= s, x[2] *= s;
+    }
+    else // sphere: |x - (0, yc, 0)| = Rs
+    {
+      const double s = Rs / std::sqrt(x[0] * x[0] + (x[1] - yc) * (x[1] - yc) + x[2] * x[2]);
+      x[0] *= s, x[1] = yc + s * (x[1] - yc), x[2] *= s;
+    }
+  }
 }
 } // namespace breastsim

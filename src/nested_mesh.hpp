@@ -17,4 +17,11 @@ meshes::TaggedMesh refine_red(const meshes::TaggedMesh& m);
 /// edge midpoint, gmsh node order (cells: edges 01, 12, 20, 30, 32, 31;
 /// facets: 01, 12, 20).
 meshes::TaggedMesh straight_p2(const meshes::TaggedMesh& m);
+
+/// Move the nodes of the facets tagged `skin` onto the half cap's surface
+/// (base radius R, height H), as gmsh's splitting does with new boundary
+/// nodes: rim nodes (y = 0) radially in the base plane to radius R, the
+/// others radially from the sphere's centre (0, H - Rs, 0) onto the sphere
+/// (nodes on x = 0 stay there). Nodes already on it do not move.
+void snap_to_cap(meshes::TaggedMesh& m, double R, double H, int skin);
 } // namespace breastsim

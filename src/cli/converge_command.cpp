@@ -37,7 +37,7 @@ Command add_converge_command(CLI::App& root)
   struct Options
   {
     std::string case_file, out, orders = "1", quantities = "nipple_z,projection,energy";
-    std::string mms_meshes = "nested", stage = "preop";
+    std::string mms_meshes = "nested", stage = "preop", refine = "gmsh";
     std::vector<std::string> sets;
     int levels = 3;
     bool mms = false;
@@ -64,6 +64,10 @@ Command add_converge_command(CLI::App& root)
                   "sutures and reset, then the post-operative standing posture (adds the "
                   "quantities resected_volume, max_gap)")
       ->check(CLI::IsMember({"preop", "surgery"}));
+  app->add_option("--refine", o->refine,
+                  "gmsh: gmsh's splitting (geometry.refinements, default); red: red refinement "
+                  "of the level-0 mesh, new skin nodes snapped to the cap (preop stage only)")
+      ->check(CLI::IsMember({"gmsh", "red"}));
   app->add_option("--mms-meshes", o->mms_meshes,
                   "MMS mesh family: nested (red refinement of the gmsh mesh, default), split "
                   "(gmsh splitting, boundary snapped to the sphere), remesh (gmsh at "
@@ -107,7 +111,9 @@ Command add_converge_command(CLI::App& root)
             {
               auto studies = converge_case(c, o->levels, orders, split(o->quantities), MPI_COMM_WORLD,
                                            o->stage == "surgery" ? ConvergeStage::surgery
-                                                                 : ConvergeStage::preop);
+                                                                 : ConvergeStage::preop,
+                                           o->refine == "red" ? ConvergeRefinement::red
+                                                              : ConvergeRefinement::gmsh);
               for (const auto& s : studies)
               {
                 j["studies"].push_back(to_json(s));

@@ -5,8 +5,10 @@
 # orders, Richardson value and GCI; the nipple drop increases in magnitude
 # with refinement (a coarse mesh is too stiff) and the Richardson value lies
 # beyond the finest level; convergence.txt and a non-empty PNG are written.
-# Bad input: --levels 1 and an unknown quantity are rejected with a message
-# naming the option, and no output folder is left.
+# --refine red gives the same level 0 and cell counts. Bad input: --levels 1,
+# an unknown quantity, a surgery quantity without --stage surgery, and
+# --refine red with it are rejected with a message naming the option and no
+# output folder.
 set -eu
 BIN="$1"; CASES="$2"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -35,6 +37,24 @@ checks = [
 print("checks:", checks)
 sys.exit(0 if all(checks) else 1)
 PY
+# Red refinement (--refine red): the same level-0 mesh, hence the same
+# level-0 values; 8x cells per level, monotone nipple drop.
+"$BIN" -q converge "$CASES/default.toml" --levels 3 --quantity nipple_z,volume --refine red \
+  --set geometry.mesh_size=0.03 --out "$work/red"
+/usr/bin/python3 - "$work/conv/convergence.json" "$work/red/convergence.json" <<'PY'
+import json, sys
+g, = json.load(open(sys.argv[1]))["studies"]
+r, = json.load(open(sys.argv[2]))["studies"]
+zg, zr = g["quantities"]["nipple_z"]["values"], r["quantities"]["nipple_z"]["values"]
+checks = [
+    g["refinement"] == "gmsh" and r["refinement"] == "red",
+    r["cells"] == g["cells"],
+    abs(zr[0] - zg[0]) <= 1e-12 * abs(zg[0]),
+    zr[2] < zr[1] < zr[0],
+]
+print("red refinement checks:", checks)
+sys.exit(0 if all(checks) else 1)
+PY
 # Bad input.
 set +e
 out=$("$BIN" -q converge "$CASES/default.toml" --levels 1 --out "$work/bad" 2>&1); rc=$?
@@ -51,4 +71,9 @@ out=$("$BIN" -q converge "$CASES/default.toml" --quantity max_gap --out "$work/b
 set -e
 echo "$out"
 [ "$rc" -eq 2 ] && echo "$out" | grep -q "needs --stage surgery" && [ ! -e "$work/bad" ]
+set +e
+out=$("$BIN" -q converge "$CASES/default.toml" --stage surgery --refine red --out "$work/bad" 2>&1); rc=$?
+set -e
+echo "$out"
+[ "$rc" -eq 2 ] && echo "$out" | grep -q -- "--refine red: only with --stage preop" && [ ! -e "$work/bad" ]
 echo "all converge checks passed"
