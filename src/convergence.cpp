@@ -91,7 +91,6 @@ Richardson richardson(double q0, double q1, double q2, double r, double Fs)
 
 namespace
 {
-/// Pre-operative stage: the standing posture of the case's cap at level l.
 /// The case's cap refined `refinements` times by red refinement, new skin
 /// nodes snapped onto the cap (P2: straight midpoints, then snapped too).
 TaggedDolfinxMesh red_refined_cap(const Config& c, MPI_Comm comm)
@@ -122,6 +121,8 @@ TaggedDolfinxMesh red_refined_cap(const Config& c, MPI_Comm comm)
   return to_dolfinx(comm, m, order);
 }
 
+/// Pre-operative stage: the standing posture of the case's cap at the level
+/// (geometry.refinements of c).
 LevelValues solve_preop_level(const Config& c, MPI_Comm comm, std::int64_t& cells,
                               std::int64_t& dofs, ConvergeRefinement refine)
 {
