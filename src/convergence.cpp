@@ -1,7 +1,12 @@
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "log.hpp"
+#include "reference_reset.hpp"
 #include "simulate.hpp"
+#include "surgery.hpp"
+#include "breastsim_registry.hpp"
+#include "mesh_from_gmsh.hpp"
+#include "nested_mesh.hpp"
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -15,24 +20,35 @@ namespace breastsim
 {
 namespace
 {
+/// What one level of a study measures: the observables of the solved
+/// posture and, for the surgery stage, the incision numbers.
+struct LevelValues
+{
+  Observables o;
+  double resected_volume = 0, max_gap = 0;
+};
+
 struct QuantityInfo
 {
   std::string name, unit;
-  double (*get)(const Observables&);
+  double (*get)(const LevelValues&);
+  bool surgery_only = false;
 };
 
 const std::vector<QuantityInfo>& quantity_table()
 {
   static const std::vector<QuantityInfo> q = {
-      {"nipple_x", "m", [](const Observables& o) { return o.nipple[0]; }},
-      {"nipple_y", "m", [](const Observables& o) { return o.nipple[1]; }},
-      {"nipple_z", "m", [](const Observables& o) { return o.nipple[2]; }},
-      {"projection", "m", [](const Observables& o) { return o.projection; }},
-      {"z_min", "m", [](const Observables& o) { return o.z_min; }},
-      {"z_max", "m", [](const Observables& o) { return o.z_max; }},
-      {"base_perimeter", "m", [](const Observables& o) { return o.base_perimeter; }},
-      {"volume", "m^3", [](const Observables& o) { return o.volume; }},
-      {"energy", "J", [](const Observables& o) { return o.energy; }},
+      {"nipple_x", "m", [](const LevelValues& v) { return v.o.nipple[0]; }},
+      {"nipple_y", "m", [](const LevelValues& v) { return v.o.nipple[1]; }},
+      {"nipple_z", "m", [](const LevelValues& v) { return v.o.nipple[2]; }},
+      {"projection", "m", [](const LevelValues& v) { return v.o.projection; }},
+      {"z_min", "m", [](const LevelValues& v) { return v.o.z_min; }},
+      {"z_max", "m", [](const LevelValues& v) { return v.o.z_max; }},
+      {"base_perimeter", "m", [](const LevelValues& v) { return v.o.base_perimeter; }},
+      {"volume", "m^3", [](const LevelValues& v) { return v.o.volume; }},
+      {"energy", "J", [](const LevelValues& v) { return v.o.energy; }},
+      {"resected_volume", "m^3", [](const LevelValues& v) { return v.resected_volume; }, true},
+      {"max_gap", "m", [](const LevelValues& v) { return v.max_gap; }, true},
   };
   return q;
 }
@@ -73,6 +89,96 @@ Richardson richardson(double q0, double q1, double q2, double r, double Fs)
   return R;
 }
 
+namespace
+{
+/// The case's cap refined `refinements` times by red refinement, new skin
+/// nodes snapped onto the cap (P2: straight midpoints, then snapped too).
+TaggedDolfinxMesh red_refined_cap(const Config& c, MPI_Comm comm)
+{
+  auto spec = cap_spec(c);
+  const int order = spec.order, levels = spec.refinements;
+  spec.order = 1;
+  spec.refinements = 0;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh m;
+  m.order = order;
+  if (rank == 0)
+  {
+    const int skin = generated::tag("skin");
+    m = meshes::mesh_half_cap(spec, generated::tag("base"), skin, generated::tag("symmetry"));
+    for (int l = 0; l < levels; ++l)
+    {
+      m = refine_red(m);
+      snap_to_cap(m, spec.R, spec.H, skin);
+    }
+    if (order == 2)
+    {
+      m = straight_p2(m);
+      snap_to_cap(m, spec.R, spec.H, skin);
+    }
+  }
+  return to_dolfinx(comm, m, order);
+}
+
+/// Pre-operative stage: the standing posture of the case's cap at the level
+/// (geometry.refinements of c).
+LevelValues solve_preop_level(const Config& c, MPI_Comm comm, std::int64_t& cells,
+                              std::int64_t& dofs, ConvergeRefinement refine)
+{
+  Model model(refine == ConvergeRefinement::red ? red_refined_cap(c, comm)
+                                                : build_neutral_mesh(c, comm),
+              Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, model);
+  NewtonSolver newton(model, newton_options(c));
+  ObservableProbe probe(model, {0, c.number("geometry.H"), 0});
+  cells = model.mesh().mesh->topology().index_map(3)->size_global();
+  dofs = model.num_dofs();
+  LevelValues v;
+  v.o = solve_posture(model, newton, probe, named_posture("standing"), c).observables;
+  return v;
+}
+
+/// Surgery stage (the steps of surgery() without output): incised mesh at the
+/// level, sutures closed without gravity, stresses reset, then the
+/// post-operative standing posture from the new reference; the resected
+/// volume from the pre- and post-operative meshes (full breast).
+LevelValues solve_surgery_level(const Config& c, MPI_Comm comm, std::int64_t& cells,
+                                std::int64_t& dofs)
+{
+  const auto cap = cap_spec(c);
+  const auto inc = incision_spec(c);
+  const auto geo = meshes::incision_geometry(cap, inc);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh cut;
+  cut.order = cap.order;
+  if (rank == 0)
+    cut = meshes::mesh_incised_cap(cap, inc,
+                                   {generated::tag("base"), generated::tag("skin"),
+                                    generated::tag("symmetry"), generated::tag("suture_abd"),
+                                    generated::tag("suture_bcd")});
+  LevelValues v;
+  {
+    Model pre(build_neutral_mesh(c, comm), Constraints{true, c.flag("base.fixed")});
+    v.resected_volume = 2 * pre.volume();
+  }
+  Model post(to_dolfinx(comm, cut, cap.order), Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, post);
+  v.resected_volume -= 2 * post.volume();
+  v.max_gap = close_sutures(post, c).max_gap;
+  const auto nipple = ObservableProbe(post, geo.A).measure(post).nipple;
+  reset_reference(post);
+  post.set_parameter("closure", {0.0});
+  NewtonSolver newton(post, newton_options(c));
+  cells = post.mesh().mesh->topology().index_map(3)->size_global();
+  dofs = post.num_dofs();
+  v.o = solve_posture(post, newton, ObservableProbe(post, nipple), named_posture("standing"), c)
+            .observables;
+  return v;
+}
+} // namespace
+
 std::vector<std::string> convergence_quantities()
 {
   std::vector<std::string> n;
@@ -84,7 +190,8 @@ std::vector<std::string> convergence_quantities()
 std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
                                             const std::vector<int>& orders,
                                             const std::vector<std::string>& quantities,
-                                            MPI_Comm comm)
+                                            MPI_Comm comm, ConvergeStage stage,
+                                            ConvergeRefinement refine)
 {
   if (levels < 3)
     throw InputError(fmt::format("--levels: at least 3 levels are needed (got {})", levels));
@@ -94,13 +201,20 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
     if (p != 1 && p != 2)
       throw InputError(fmt::format("--order: element order must be 1 or 2 (got {})", p));
   for (const auto& q : quantities)
-    quantity(q);
+    if (quantity(q).surgery_only && stage != ConvergeStage::surgery)
+      throw InputError(fmt::format("--quantity: '{}' needs --stage surgery", q));
+  if (stage == ConvergeStage::surgery && refine == ConvergeRefinement::red)
+    throw InputError("--refine red: only with --stage preop (the surgery stage refines the "
+                     "incised mesh with gmsh's splitting)");
+  if (stage == ConvergeStage::surgery)
+    meshes::incision_geometry(cap_spec(c0), incision_spec(c0)); // rejects bad incisions first
   std::vector<ConvergenceStudy> out;
   for (int p : orders)
   {
     ConvergenceStudy s;
     s.element_order = p;
-    s.posture = "standing";
+    s.refinement = refine == ConvergeRefinement::red ? "red" : "gmsh";
+    s.posture = stage == ConvergeStage::surgery ? "standing (post-operative)" : "standing";
     for (const auto& q : quantities)
       s.quantities.push_back({q, quantity(q).unit, {}, {}, {}});
     for (int l = 0; l < levels; ++l)
@@ -110,17 +224,15 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
       c.set("geometry.order", std::int64_t(p));
       c.set("geometry.refinements", std::int64_t(l));
       c.validate();
-      Model model(build_neutral_mesh(c, comm), Constraints{true, c.flag("base.fixed")});
-      apply_parameters(c, model);
-      NewtonSolver newton(model, newton_options(c));
-      ObservableProbe probe(model, {0, c.number("geometry.H"), 0});
-      spdlog::info("converge: P{} refinement {} ({} dofs)", p, l, model.num_dofs());
-      auto r = solve_posture(model, newton, probe, named_posture(s.posture), c);
+      spdlog::info("converge: P{} refinement {} ({})", p, l, s.posture);
+      std::int64_t cells = 0, dofs = 0;
+      const LevelValues v = stage == ConvergeStage::surgery ? solve_surgery_level(c, comm, cells, dofs)
+                                                            : solve_preop_level(c, comm, cells, dofs, refine);
       s.refinements.push_back(l);
-      s.cells.push_back(model.mesh().mesh->topology().index_map(3)->size_global());
-      s.dofs.push_back(model.num_dofs());
+      s.cells.push_back(cells);
+      s.dofs.push_back(dofs);
       for (auto& q : s.quantities)
-        q.values.push_back(quantity(q.name).get(r.observables));
+        q.values.push_back(quantity(q.name).get(v));
       s.seconds.push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
@@ -141,6 +253,7 @@ nlohmann::json to_json(const ConvergenceStudy& s)
   nlohmann::json j;
   j["element_order"] = s.element_order;
   j["posture"] = s.posture;
+  j["refinement"] = s.refinement;
   j["refinement_ratio"] = 2;
   j["safety_factor"] = 1.25;
   j["refinements"] = s.refinements;
@@ -168,7 +281,8 @@ nlohmann::json to_json(const ConvergenceStudy& s)
 
 std::string convergence_table(const ConvergenceStudy& s)
 {
-  std::string out = fmt::format("P{} posture {}: levels (cells)", s.element_order, s.posture);
+  std::string out = fmt::format("P{} posture {}, {} refinement: levels (cells)", s.element_order,
+                                s.posture, s.refinement);
   for (std::size_t i = 0; i < s.cells.size(); ++i)
     out += fmt::format(" {} ({})", s.refinements[i], s.cells[i]);
   out += "\n";

@@ -38,22 +38,46 @@ struct ConvergenceStudy
 {
   int element_order = 1;
   std::string posture;
+  std::string refinement = "gmsh"; ///< "gmsh" (splitting) or "red"
   std::vector<int> refinements;
   std::vector<std::int64_t> cells, dofs;
   std::vector<double> seconds;
   std::vector<QuantitySeries> quantities;
 };
 
-/// Quantities `converge` knows (observables of the solved posture).
+/// What `converge` solves per level: the pre-operative standing posture, or
+/// the surgery (incision, sutures, reset) and the post-operative standing
+/// posture.
+enum class ConvergeStage
+{
+  preop,
+  surgery
+};
+
+/// How the levels are refined: gmsh's splitting (geometry.refinements), or
+/// red refinement of the level-0 gmsh mesh with the new skin nodes moved onto
+/// the cap (src/nested_mesh.hpp; preop stage only). gmsh's splitting does
+/// not halve the longest edge at the first split and lowers the smallest
+/// dihedral angle (docs/CONVERGENCE.md).
+enum class ConvergeRefinement
+{
+  gmsh,
+  red
+};
+
+/// Quantities `converge` knows: the observables of the solved posture, and
+/// with the surgery stage also resected_volume and max_gap (suture).
 std::vector<std::string> convergence_quantities();
 
-/// Solve the case's standing posture (the first requested posture if
-/// standing is not requested) on `levels` refinements for each element order.
-/// Collective. Throws InputError on an unknown quantity or levels < 3.
+/// Solve the case's standing posture (pre-operative, or post-operative after
+/// the case's surgery) on `levels` refinements for each element order.
+/// Collective. Throws InputError on an unknown quantity, levels outside 3..5,
+/// or a surgery quantity without the surgery stage.
 std::vector<ConvergenceStudy> converge_case(const Config& c, int levels,
                                             const std::vector<int>& orders,
                                             const std::vector<std::string>& quantities,
-                                            MPI_Comm comm);
+                                            MPI_Comm comm, ConvergeStage stage = ConvergeStage::preop,
+                                            ConvergeRefinement refine = ConvergeRefinement::gmsh);
 
 nlohmann::json to_json(const ConvergenceStudy& s);
 std::string convergence_table(const ConvergenceStudy& s);

@@ -4,6 +4,7 @@
 #include "errors.hpp"
 #include "mesh_from_gmsh.hpp"
 #include "mesh_quality.hpp"
+#include "nested_mesh.hpp"
 #include "mms_p1.h"
 #include "mms_p2.h"
 #include <algorithm>
@@ -64,8 +65,36 @@ double sum_all(double local, MPI_Comm comm)
 }
 } // namespace
 
+MmsMeshes parse_mms_meshes(const std::string& name)
+{
+  if (name == "nested")
+    return MmsMeshes::nested;
+  if (name == "split")
+    return MmsMeshes::gmsh_split;
+  if (name == "remesh")
+    return MmsMeshes::gmsh_remesh;
+  if (name == "snapped")
+    return MmsMeshes::nested_snapped;
+  throw InputError(fmt::format("--mms-meshes: '{}' is not one of nested, split, remesh, snapped", name));
+}
+
+std::string to_string(MmsMeshes k)
+{
+  switch (k)
+  {
+  case MmsMeshes::nested:
+    return "nested";
+  case MmsMeshes::gmsh_split:
+    return "split";
+  case MmsMeshes::gmsh_remesh:
+    return "remesh";
+  default:
+    return "snapped";
+  }
+}
+
 MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
-                   bool patch)
+                   bool patch, MmsMeshes kind)
 {
   const auto t0 = std::chrono::steady_clock::now();
   const MmsForms uf = mms_forms(order);
@@ -74,15 +103,28 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   meshes::HalfCapSpec spec;
   spec.R = c.number("geometry.R");
   spec.H = c.number("geometry.H");
-  spec.mesh_size = mesh_size;
-  spec.order = order;
-  spec.refinements = refinements;
+  spec.mesh_size = kind == MmsMeshes::gmsh_remesh ? mesh_size / std::pow(2.0, refinements) : mesh_size;
+  spec.order = (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped) ? 1 : order;
+  spec.refinements = kind == MmsMeshes::gmsh_split ? refinements : 0;
   int rank;
   MPI_Comm_rank(comm, &rank);
   meshes::TaggedMesh tm;
   tm.order = order;
   if (rank == 0)
+  {
     tm = meshes::mesh_half_cap(spec, generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"));
+    if (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped)
+    {
+      for (int l = 0; l < refinements; ++l)
+      {
+        tm = refine_red(tm);
+        if (kind == MmsMeshes::nested_snapped)
+          snap_to_cap(tm, spec.R, spec.H, generated::tag("skin"));
+      }
+      if (order == 2)
+        tm = straight_p2(tm);
+    }
+  }
   TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
 
   auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
@@ -257,22 +299,19 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   return L;
 }
 
-MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm)
+MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm,
+                   MmsMeshes kind)
 {
-  // Each level is meshed by gmsh at mesh_size / 2^l, not by gmsh's uniform
-  // splitting (geometry.refinements): on the split meshes (boundary nodes
-  // snapped to the sphere) the P1 MMS orders were only L2 1.2, H1 0.6-0.8
-  // (mesh_size 16 mm, refinements 0-2; docs/CONVERGENCE.md). The meshes are
-  // not nested, so the mesh size of a level is h_eff = (V / cells)^(1/3).
   MmsStudy s;
   s.order = order;
   s.mesh_size = mesh_size;
+  s.meshes = kind;
   const double R = c.number("geometry.R"), H = c.number("geometry.H");
   const double volume = M_PI * H * (3 * R * R + H * H) / 12; // the half cap
   for (int l = 0; l < levels; ++l)
   {
     const double hl = mesh_size / std::pow(2.0, l);
-    s.levels.push_back(solve_mms(c, order, hl, 0, comm));
+    s.levels.push_back(solve_mms(c, order, mesh_size, l, comm, false, kind));
     auto& L = s.levels.back();
     L.refinements = l;
     L.mesh_size = hl;
@@ -296,6 +335,7 @@ nlohmann::json to_json(const MmsStudy& s)
   nlohmann::json j;
   j["element_order"] = s.order;
   j["mesh_size"] = s.mesh_size;
+  j["meshes"] = to_string(s.meshes);
   j["expected_order_l2"] = s.order + 1;
   j["expected_order_h1"] = s.order;
   for (const auto& L : s.levels)
@@ -311,8 +351,8 @@ nlohmann::json to_json(const MmsStudy& s)
 
 std::string mms_table(const MmsStudy& s)
 {
-  std::string out = fmt::format("MMS P{} (mesh_size {:g} m): expected orders L2 {}, H1 {}\n",
-                                s.order, s.mesh_size, s.order + 1, s.order);
+  std::string out = fmt::format("MMS P{} ({} meshes from mesh_size {:g} m): expected orders L2 {}, H1 {}\n",
+                                s.order, to_string(s.meshes), s.mesh_size, s.order + 1, s.order);
   out += fmt::format("{:>5} {:>8} {:>8} {:>10} {:>12} {:>12} {:>8} {:>8}\n", "level", "cells",
                      "dofs", "h_eff[mm]", "L2 error", "H1 error", "p(L2)", "p(H1)");
   for (std::size_t i = 0; i < s.levels.size(); ++i)

@@ -12,6 +12,21 @@
 
 namespace breastsim
 {
+/// How the levels of an MMS study are meshed.
+enum class MmsMeshes
+{
+  nested,      ///< gmsh P1 mesh of mesh_size, red-refined l times (nodes never move; P2:
+               ///< straight 10-node cells): the coarse polyhedron at every level, h / 2^l
+  gmsh_split,  ///< gmsh mesh of mesh_size split l times by gmsh (boundary nodes snapped
+               ///< to the sphere), as geometry.refinements
+  gmsh_remesh, ///< an independent gmsh mesh of mesh_size / 2^l (not nested)
+  nested_snapped ///< nested, then the new skin nodes moved onto the sphere (as gmsh's
+                 ///< splitting does; diagnosis of the split meshes)
+};
+/// "nested", "split", "remesh", "snapped"
+MmsMeshes parse_mms_meshes(const std::string& name);
+std::string to_string(MmsMeshes k);
+
 struct MmsLevel
 {
   int refinements = 0;
@@ -31,6 +46,7 @@ struct MmsStudy
 {
   int order = 1;
   double mesh_size = 0;
+  MmsMeshes meshes = MmsMeshes::nested;
   std::vector<MmsLevel> levels;
   /// Observed orders between consecutive levels,
   /// log(e_i / e_{i+1}) / log(h_eff_i / h_eff_{i+1}); one fewer than levels.
@@ -39,16 +55,17 @@ struct MmsStudy
 
 /// The material parameters of `c` (its physics keys; registry defaults
 /// otherwise) with gravity, sutures and the tension-field relaxation off.
-/// Geometry: the case's R and H; element order `order`; the mesh of
-/// `mesh_size` refined `refinements` times. Collective.
+/// Geometry: the case's R and H; element order `order`; level `refinements`
+/// of the mesh family `meshes` from `mesh_size`. Collective.
 /// patch: the patch test instead (u_lin, a homogeneous deformation, solved
 /// from u = 0; the errors must be round-off; rel_* still relative to u_ex).
 MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
-                   bool patch = false);
+                   bool patch = false, MmsMeshes meshes = MmsMeshes::gmsh_split);
 
-/// solve_mms on meshes of size mesh_size / 2^l, l = 0 .. levels-1 (each
-/// meshed by gmsh, no splitting), and the observed orders.
-MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm);
+/// solve_mms on levels l = 0 .. levels-1 of the mesh family `meshes`, and the
+/// observed orders (h_eff = (V / cells)^(1/3): exactly h0 / 2^l when nested).
+MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm,
+                   MmsMeshes meshes = MmsMeshes::nested);
 
 nlohmann::json to_json(const MmsStudy& s);
 /// Printable table: level, cells, dofs, h, L2, H1, orders.

@@ -1,5 +1,7 @@
-// `breastsim converge CASE.toml --levels N [--order 1,2] [--quantity ...] [--mms]`:
-// mesh-convergence study of the case's standing posture (observed order,
+// `breastsim converge CASE.toml --levels N [--order 1,2] [--quantity ...]
+// [--stage preop|surgery] [--mms [--mms-meshes nested|split|remesh]]`:
+// mesh-convergence study of the case's standing posture, pre- or
+// post-operative (observed order,
 // Richardson extrapolation, GCI of the finest level) or, with --mms, the
 // manufactured-solution verification (L2/H1 error orders). docs/CONVERGENCE.md.
 #include "../config.hpp"
@@ -35,6 +37,7 @@ Command add_converge_command(CLI::App& root)
   struct Options
   {
     std::string case_file, out, orders = "1", quantities = "nipple_z,projection,energy";
+    std::string mms_meshes = "nested", stage = "preop", refine = "gmsh";
     std::vector<std::string> sets;
     int levels = 3;
     bool mms = false;
@@ -56,6 +59,19 @@ Command add_converge_command(CLI::App& root)
   app->add_flag("--mms", o->mms,
                 "manufactured-solution problem instead of the case's posture (the case's "
                 "material, geometry and mesh_size; gravity off)");
+  app->add_option("--stage", o->stage,
+                  "preop: the standing posture of the case's cap; surgery: the case's incision, "
+                  "sutures and reset, then the post-operative standing posture (adds the "
+                  "quantities resected_volume, max_gap)")
+      ->check(CLI::IsMember({"preop", "surgery"}));
+  app->add_option("--refine", o->refine,
+                  "gmsh: gmsh's splitting (geometry.refinements, default); red: red refinement "
+                  "of the level-0 mesh, new skin nodes snapped to the cap (preop stage only)")
+      ->check(CLI::IsMember({"gmsh", "red"}));
+  app->add_option("--mms-meshes", o->mms_meshes,
+                  "MMS mesh family: nested (red refinement of the gmsh mesh, default), split "
+                  "(gmsh splitting, boundary snapped to the sphere), remesh (gmsh at "
+                  "mesh_size / 2^l)");
   return {app, [o]()
           {
             Config c = load_case(o->case_file, o->sets);
@@ -78,19 +94,26 @@ Command add_converge_command(CLI::App& root)
             nlohmann::json j;
             j["case"] = c.text("case.name");
             j["levels"] = o->levels;
+            j["stage"] = o->mms ? "mms" : o->stage;
             std::string report;
+            const MmsMeshes mms_meshes = parse_mms_meshes(o->mms_meshes);
             if (o->mms)
             {
               for (int p : orders)
               {
-                auto s = mms_study(c, p, c.number("geometry.mesh_size"), o->levels, MPI_COMM_WORLD);
+                auto s = mms_study(c, p, c.number("geometry.mesh_size"), o->levels, MPI_COMM_WORLD,
+                                   mms_meshes);
                 j["mms"].push_back(to_json(s));
                 report += mms_table(s);
               }
             }
             else
             {
-              auto studies = converge_case(c, o->levels, orders, split(o->quantities), MPI_COMM_WORLD);
+              auto studies = converge_case(c, o->levels, orders, split(o->quantities), MPI_COMM_WORLD,
+                                           o->stage == "surgery" ? ConvergeStage::surgery
+                                                                 : ConvergeStage::preop,
+                                           o->refine == "red" ? ConvergeRefinement::red
+                                                              : ConvergeRefinement::gmsh);
               for (const auto& s : studies)
               {
                 j["studies"].push_back(to_json(s));
