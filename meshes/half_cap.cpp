@@ -1,4 +1,5 @@
 #include "half_cap.hpp"
+#include <algorithm>
 #include <cmath>
 #include <gmsh.h>
 
@@ -39,7 +40,9 @@ void build_half_cap_geometry(const HalfCapSpec& s, int tag_base, int tag_skin,
   gmsh::model::getEntities(ents, 2);
   // Classify by bounding box (OCC boxes are padded by the geometric
   // tolerance, ~1e-7 m): planar faces y = 0, x = 0, z = 0 and the sphere.
-  const double tol = 1e-4 * s.mesh_size;
+  // The tolerance scales with the geometry, not the mesh: with 1e-4 h a
+  // 1 mm mesh took the padded z = 0 interface for skin.
+  const double tol = 1e-3 * std::min(s.R, s.H);
   for (auto [d, t] : ents)
   {
     double x0, y0, z0, x1, y1, z1;
