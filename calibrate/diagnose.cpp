@@ -479,6 +479,7 @@ FitState with_numerical_uncertainty(const FitState& coarse, const FitState& fine
                                     std::vector<double>& se_numerical)
 {
   FitState f = fine;
+  f.config.set("geometry.mesh_size", coarse.config.number("geometry.mesh_size")); // the user's mesh
   auto& u = f.uncertainty;
   for (std::size_t i = 0; i < f.values.size() && i < u.se_log.size(); ++i)
   {
@@ -614,7 +615,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
   }
   d.final_fit = state;
   // 9. Numerical uncertainty of the found values.
-  if (fine_ev && !d.discovered.empty())
+  if (fine_ev && (!d.discovered.empty() || d.fit_only) && !frees.empty())
   {
     const FitState f = fit(*fine_ev, rec, finer(current, o.mesh_ratio), frees, log_values(state),
                            o.lsq, "refit on the finer mesh");

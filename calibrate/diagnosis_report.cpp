@@ -205,6 +205,8 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
                          1e3 * std::abs(x.mean_residual), 1e3 * x.max_residual, x.z);
       }
     }
+    if (d.fit_only)
+      continue;
     s += "  WHAT: candidate scores (Lagrange multiplier, one-sided; mesh-error allowance):\n";
     for (const auto& c : r.scores)
       s += fmt::format("    {:<20} S = {:9.1f}   p = {:.2g}   allowance {:.1f}\n", c.name, c.score,
@@ -236,6 +238,9 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
                            1e3 * r.before.max_abs[p], 1e3 * r.after.max_abs[p]);
     }
   }
+  if (!d.se_numerical.empty())
+    s += fmt::format("\nFinal fit on the finer check mesh (numerical uncertainty included): {}\n",
+                     fit_line(d.final_fit));
   s += "\n" + d.verdict + "\n";
   s += fmt::format("({} posture solves, {:.1f} s)\n", d.posture_solves, d.seconds);
   return s;

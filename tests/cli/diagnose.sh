@@ -74,6 +74,22 @@ expect_fail() {
   [ ! -e "$work/bad" ] || { echo "FAIL: partial output for $what"; exit 1; }
 }
 if [ "$hidden" = control ]; then
+  # The recording as calibration data (issue 4: 3D surface points): mu and c
+  # with intervals that hold the truth, and a calibrated case.
+  "$bin" -q calibrate "$work/recording.json" --case "$case_file" --fit mu,c --out "$work/cal" > /dev/null
+  /usr/bin/python3 - "$work" <<'PY'
+import json, sys
+from pathlib import Path
+work = Path(sys.argv[1])
+truth = json.loads((work / "recording.json").read_text())["truth"]["case"]
+final = json.loads((work / "cal" / "diagnosis.json").read_text())["final"]
+for p in final["parameters"]:
+    key = {"mu": "tissue.mu", "c": "base.c"}[p["name"]]
+    lo, hi = p["interval95"]
+    assert lo <= truth[key] <= hi, f"{p['name']}: truth {truth[key]} not in [{lo}, {hi}]"
+    print(f"calibrate from a recording: {p['name']} = {p['value']:.4g} [{lo:.4g}, {hi:.4g}], truth {truth[key]}")
+PY
+  grep -q "mesh_size = 0.008" "$work/cal/calibrated.toml"
   expect_fail "cannot be read" "$work/missing.json"
   expect_fail "unknown candidate physics 'dark_matter'" "$work/recording.json" --candidates dark_matter
   expect_fail "alpha" "$work/recording.json" --alpha 2
