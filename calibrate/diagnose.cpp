@@ -122,6 +122,8 @@ public:
   }
 
   int posture_solves() const { return _forward.posture_solves(); }
+  /// Skin surface documents of case `c` per posture (collective; rank 0).
+  std::vector<nlohmann::json> surfaces(const Config& c) { return _forward.surfaces(c); }
   /// Standard deviation of each raw residual from now on [m] (default: the noise sigma).
   void set_sigma(std::vector<double> s) { _sigma = std::move(s); }
 
@@ -621,6 +623,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
                            o.lsq, "refit on the finer mesh");
     d.final_fit = with_numerical_uncertainty(state, f, o.mesh_ratio, d.se_numerical);
   }
+  d.surfaces = ev.surfaces(d.final_fit.config);
   if (fine_ev)
     d.posture_solves += fine_ev->posture_solves();
   d.posture_solves += ev.posture_solves();

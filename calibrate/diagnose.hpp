@@ -111,6 +111,9 @@ struct Diagnosis
   std::vector<Round> rounds;
   FitState final_fit;                 ///< after a discovery: refitted on the finer mesh
   std::vector<double> se_numerical;   ///< numerical part of the SE of ln p (final_fit)
+  /// Skin surface documents (surface_export.hpp) of the final model per
+  /// posture, on the diagnosis mesh (rank 0).
+  std::vector<nlohmann::json> surfaces;
   std::vector<std::string> discovered;
   std::string verdict;                ///< plain words
   bool fit_only = false;              ///< no candidate was tested (DiagnoseOptions::discover)

@@ -1,6 +1,8 @@
 #include "diagnosis_output.hpp"
 #include "output.hpp"
 #include "viewer.hpp"
+#include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 
 namespace breastsim::calibration
@@ -34,6 +36,35 @@ std::string xdmf_points(const std::vector<Point>& pts,
     s += "</DataItem>\n</Attribute>\n";
   }
   return s + "</Grid>\n</Domain>\n</Xdmf>\n";
+}
+
+/// |residual| at the surface's vertices [mm]: inverse-distance mean over
+/// the k nearest recorded points (for colouring the 3D page).
+std::vector<double> vertex_field(const nlohmann::json& surface, const std::vector<Point>& pts,
+                                 const std::vector<double>& residual)
+{
+  const auto& v = surface.at("vertices");
+  const std::size_t k = std::min<std::size_t>(6, pts.size());
+  std::vector<double> out;
+  for (std::size_t i = 0; i + 2 < v.size(); i += 3)
+  {
+    const Point x = {v[i].get<double>(), v[i + 1].get<double>(), v[i + 2].get<double>()};
+    std::vector<std::pair<double, std::size_t>> d;
+    for (std::size_t j = 0; j < pts.size(); ++j)
+      d.push_back({std::pow(x[0] - pts[j][0], 2) + std::pow(x[1] - pts[j][1], 2)
+                       + std::pow(x[2] - pts[j][2], 2),
+                   j});
+    std::partial_sort(d.begin(), d.begin() + k, d.end());
+    double num = 0, den = 0;
+    for (std::size_t m = 0; m < k; ++m)
+    {
+      const double w = 1.0 / (std::sqrt(d[m].first) + 1e-4); // 0.1 mm floor
+      num += w * std::abs(residual[d[m].second]);
+      den += w;
+    }
+    out.push_back(std::round(1e7 * num / den) / 1e4); // mm, 0.1 um
+  }
+  return out;
 }
 
 std::vector<double> mm(const std::vector<double>& v)
@@ -79,5 +110,23 @@ void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const
   write_json(dir / "residuals.json", res, comm);
   write_text(dir / "case.diagnosed.toml", after.config.to_toml(), comm);
   run_viewer_script("diagnose_plots.py", {dir.string()}, "residual maps of " + dir.string(), comm);
+  // The final model's skin with |residual| fields: breast pictures and the 3D page.
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  for (std::size_t p = 0; p < rec.postures.size() && p < d.surfaces.size(); ++p)
+  {
+    std::string text;
+    if (rank == 0)
+    {
+      nlohmann::json s = d.surfaces[p];
+      s["fields"]["abs_residual_before_mm"]
+          = vertex_field(s, rec.postures[p].points, before.distances[p]);
+      s["fields"]["abs_residual_after_mm"] = vertex_field(s, rec.postures[p].points, after.distances[p]);
+      text = s.dump() + "\n";
+    }
+    write_text(dir / ("surface_" + rec.postures[p].name + ".json"), text, comm);
+  }
+  render_pictures(dir, {}, comm);
+  write_view_page(dir, {}, comm);
 }
 } // namespace breastsim::calibration

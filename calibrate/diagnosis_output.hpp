@@ -5,6 +5,9 @@
 //   residuals_<posture>.xdmf         the same as a point cloud for ParaView
 //   case.diagnosed.toml              the refitted case (discovered terms on)
 //   residuals_<posture>.png          residual maps before/after (diagnose_plots.py)
+//   surface_<posture>.json           the final model's skin with |residual| fields,
+//   view_<posture>.png, overview.png and index.html (the 3D page; colour by
+//                                    displacement or |residual| before/after)
 #include "diagnose.hpp"
 #include <filesystem>
 

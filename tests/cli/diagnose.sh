@@ -51,10 +51,19 @@ else:
     assert d["rounds"][0]["scores"][0]["candidate"] in [r["candidate"] for r in d["rounds"][0]["refits"]]
 # The remaining residual is at the noise level.
 assert final["gof_p"] > 1e-3, f"final fit not at the noise level: p = {final['gof_p']}"
-for name in ["diagnosis.txt", "residuals.json", "case.diagnosed.toml", "residual_rms.png"] + \
-        [f"residuals_{p['name']}.{ext}" for p in rec["postures"] for ext in ("png", "xdmf")]:
+for name in ["diagnosis.txt", "residuals.json", "case.diagnosed.toml", "residual_rms.png",
+             "index.html", "overview.png"] + \
+        [f"residuals_{p['name']}.{ext}" for p in rec["postures"] for ext in ("png", "xdmf")] + \
+        [f"view_{p['name']}.png" for p in rec["postures"]]:
     f = work / "out" / name
     assert f.is_file() and f.stat().st_size > 1000, f"missing or empty: {name}"
+# The 3D page can colour the final skin by |residual| before/after.
+for p in rec["postures"]:
+    surf = json.loads((work / "out" / f"surface_{p['name']}.json").read_text())
+    n = len(surf["vertices"]) // 3
+    for f in ("abs_residual_before_mm", "abs_residual_after_mm", "displacement_mm"):
+        assert len(surf["fields"][f]) == n, f
+    assert max(surf["fields"]["abs_residual_before_mm"]) > 0
 print(f"OK: {hidden}: named {found or 'nothing'}")
 PY
 
