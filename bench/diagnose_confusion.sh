@@ -9,6 +9,7 @@
 # Usage: bash bench/diagnose_confusion.sh [BUILD_DIR] [SEEDS] [CASES]
 #   SEEDS: number of seeds (default 3); CASES: space-separated subset of
 #   "control base_springs skin suspensory_ligament gland_core".
+#   FIRST_SEED (environment, default 1): seeds FIRST_SEED .. FIRST_SEED + SEEDS - 1.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../build}"
@@ -29,7 +30,8 @@ current_sets() {
 }
 
 for hidden in $cases; do
-  for seed in $(seq 1 "$seeds"); do
+  first="${FIRST_SEED:-1}"
+  for seed in $(seq "$first" $((first + seeds - 1))); do
     dir="$out/${hidden}_${seed}"
     mkdir -p "$dir"
     sets=$(current_sets "$hidden")

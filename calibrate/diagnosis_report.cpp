@@ -232,10 +232,13 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
                        r.lr, r.critical_used, r.critical, r.critical_used - r.critical,
                        r.accepted ? "ACCEPTED" : "rejected");
       if (r.accepted)
+      {
+        s += "  FIT BEFORE -> AFTER:\n";
         for (std::size_t p = 0; p < rec.postures.size(); ++p)
-          s += fmt::format("  IMPROVED {:<12} RMS {:.3f} -> {:.3f} mm, max {:.3f} -> {:.3f} mm\n",
+          s += fmt::format("    {:<12} RMS {:.3f} -> {:.3f} mm, max {:.3f} -> {:.3f} mm\n",
                            rec.postures[p].name, 1e3 * r.before.rms[p], 1e3 * r.after.rms[p],
                            1e3 * r.before.max_abs[p], 1e3 * r.after.max_abs[p]);
+      }
     }
   }
   if (!d.se_numerical.empty())
