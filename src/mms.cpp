@@ -5,6 +5,7 @@
 #include "mesh_from_gmsh.hpp"
 #include "mesh_quality.hpp"
 #include "nested_mesh.hpp"
+#include "residual_newton.hpp"
 #include "mms_p1.h"
 #include "mms_p2.h"
 #include <algorithm>
@@ -177,42 +178,14 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
     bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0));
   }
 
-  const auto& imap = *V->dofmap()->index_map;
-  const int bs = V->dofmap()->index_map_bs();
-  Mat A = fem::petsc::create_matrix(*Jf, "aij");
-  Vec b = la::petsc::create_vector(imap, bs);
-  Vec dx;
-  VecDuplicate(b, &dx);
-  Vec x = la::petsc::create_vector_wrap(*u->x());
-  KSP ksp;
-  KSPCreate(comm, &ksp);
-  KSPSetType(ksp, KSPPREONLY);
-  PC pc;
-  KSPGetPC(ksp, &pc);
-  PCSetType(pc, PCLU);
-  PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
-
-  auto residual = [&]()
-  {
-    Vec bl;
-    VecGhostGetLocalForm(b, &bl);
-    VecSet(bl, 0.0);
-    VecGhostRestoreLocalForm(b, &bl);
-    fem::petsc::assemble_vector(b, *R);
-    VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
-    VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
-    fem::petsc::set_bc(b, bcs, x, -1.0);
-    PetscReal n;
-    VecNorm(b, NORM_2, &n);
-    return double(n);
-  };
+  ResidualNewton newton(R, Jf, u, bcs);
 
   MmsLevel L;
   L.refinements = refinements;
   spdlog::debug("MMS P{} level {}: min dihedral angle {:.2f} deg", order, refinements,
                 mesh_quality(*m.mesh).min_dihedral_deg);
   // Force scale: |R(0) - R(u_ex)| (u = 0: the full manufactured load).
-  const double r0 = residual();
+  const double r0 = newton.residual_norm();
   // Newton from the interpolant of u_ex (from u = 0 the
   // first iterates of the membrane-dominated problem may invert elements);
   // the converged discrete solution does not depend on the initial guess.
@@ -227,55 +200,20 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
       bc->set(arr, 1.0); // u_x = 0 exactly on the symmetry face
     u->x()->scatter_fwd();
   }
-  double r = residual();
-  for (int it = 0; it < 30; ++it)
-  {
-    if (r <= 1e-11 * r0)
-      break;
-    MatZeroEntries(A);
-    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *Jf, bcs);
-    MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
-    MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
-    fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V, bcs);
-    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
-    KSPSetOperators(ksp, A, A);
-    KSPSolve(ksp, b, dx);
-    KSPConvergedReason reason;
-    KSPGetConvergedReason(ksp, &reason);
-    if (reason < 0)
-      throw SolveError(fmt::format("MMS P{} refinement {}: LU solve failed (KSP reason {})", order,
-                                   refinements, int(reason)));
-    // Full step, halved while the residual norm grows (or is not finite).
-    const double r_old = r;
-    double step = 1.0;
-    VecAXPY(x, -step, dx);
-    u->x()->scatter_fwd();
-    r = residual();
-    for (int k = 0; k < 12 && !(r < r_old); ++k)
-    {
-      step *= 0.5;
-      VecAXPY(x, step, dx); // back to half of the previous step
-      u->x()->scatter_fwd();
-      r = residual();
-    }
-    PetscReal ndx, nx;
-    VecNorm(dx, NORM_2, &ndx);
-    ndx *= step;
-    VecNorm(x, NORM_2, &nx);
-    L.newton_iterations = it + 1;
-    spdlog::debug("MMS P{} level {}: Newton {} |R| = {:.3e} (rel {:.3e}), |du| = {:.3e}", order,
-                  refinements, it + 1, r, r / r0, ndx);
-    if (!std::isfinite(r))
-      break;
-    if (ndx <= 1e-13 * nx && r <= 1e-8 * r0)
-      break;
-  }
-  KSPDestroy(&ksp);
-  VecDestroy(&x);
-  VecDestroy(&dx);
-  VecDestroy(&b);
-  MatDestroy(&A);
+  ResidualNewtonOptions no;
+  no.rtol = 1e-11;
+  no.max_iterations = 30;
+  no.max_halvings = 12;
+  no.step_rtol = 1e-13; // stagnation at round-off with a small residual
+  no.accept_rtol = 1e-8;
+  const auto nr = newton.solve(r0, no, [&](int it, double r) {
+    spdlog::debug("MMS P{} level {}: Newton {} |R| = {:.3e} (rel {:.3e})", order, refinements, it,
+                  r, r / r0);
+  });
+  if (nr.lu_failed)
+    throw SolveError(fmt::format("MMS P{} refinement {}: LU solve failed", order, refinements));
+  L.newton_iterations = nr.iterations;
+  const double r = nr.residual;
   if (!(r <= 1e-8 * r0))
     throw SolveError(fmt::format("MMS P{} refinement {}: Newton did not converge (|R|/|R0| = {:.3e})",
                                  order, refinements, r / r0));
@@ -294,7 +232,7 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   MPI_Allreduce(&hloc, &L.h, 1, MPI_DOUBLE, MPI_MAX, comm);
   L.cells = m.mesh->topology().index_map(3)->size_global();
   L.min_dihedral_deg = mesh_quality(*m.mesh).min_dihedral_deg;
-  L.dofs = imap.size_global() * bs;
+  L.dofs = V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
   L.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return L;
 }

@@ -2,6 +2,7 @@
 #include "../meshes/tagged_mesh.hpp"
 #include "errors.hpp"
 #include "mesh_from_gmsh.hpp"
+#include "residual_newton.hpp"
 #include "sphere_bench_p1.h"
 #include "sphere_bench_p2.h"
 #include <algorithm>
@@ -218,96 +219,29 @@ SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double
     bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), Vi));
   }
 
-  const auto& imap = *V->dofmap()->index_map;
-  const int bs = V->dofmap()->index_map_bs();
-  Mat A = fem::petsc::create_matrix(*Jf, "aij");
-  Vec b = la::petsc::create_vector(imap, bs);
-  Vec dx;
-  VecDuplicate(b, &dx);
-  Vec x = la::petsc::create_vector_wrap(*u->x());
-  KSP ksp;
-  KSPCreate(comm, &ksp);
-  KSPSetType(ksp, KSPPREONLY);
-  PC pc;
-  KSPGetPC(ksp, &pc);
-  PCSetType(pc, PCLU);
-  PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
-  auto residual = [&]()
-  {
-    Vec bl;
-    VecGhostGetLocalForm(b, &bl);
-    VecSet(bl, 0.0);
-    VecGhostRestoreLocalForm(b, &bl);
-    fem::petsc::assemble_vector(b, *R);
-    VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
-    VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
-    fem::petsc::set_bc(b, bcs, x, -1.0);
-    PetscReal n;
-    VecNorm(b, NORM_2, &n);
-    return double(n);
-  };
+  ResidualNewton newton(R, Jf, u, bcs);
 
   SphereBenchResult res;
   p0->value = {s.p0};
-  const double r_load = residual(); // |R(0)| at the full pressure: the force scale
+  const double r_load = newton.residual_norm(); // |R(0)| at the full pressure: the force scale
   for (int step = 1; step <= load_steps; ++step)
   {
     p0->value = {s.p0 * step / load_steps};
-    double r = residual();
-    int it = 0;
-    for (; it < 40 && r > 1e-11 * r_load; ++it)
-    {
-      MatZeroEntries(A);
-      fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *Jf, bcs);
-      MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
-      MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
-      fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *V, bcs);
-      MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-      MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
-      KSPSetOperators(ksp, A, A);
-      KSPSolve(ksp, b, dx);
-      KSPConvergedReason reason;
-      KSPGetConvergedReason(ksp, &reason);
-      if (reason < 0)
-      {
-        r = std::numeric_limits<double>::infinity(); // reported below
-        break;
-      }
-      // Full step, halved while the residual norm grows or is not finite
-      // (ln J of an inverted trial state).
-      const double r_old = r;
-      double step_len = 1.0;
-      VecAXPY(x, -step_len, dx);
-      u->x()->scatter_fwd();
-      r = residual();
-      for (int k = 0; k < 20 && !(r < r_old); ++k)
-      {
-        step_len *= 0.5;
-        VecAXPY(x, step_len, dx);
-        u->x()->scatter_fwd();
-        r = residual();
-      }
+    ResidualNewtonOptions no;
+    no.rtol = 1e-11;
+    no.max_iterations = 40;
+    no.max_halvings = 20;
+    const auto nr = newton.solve(r_load, no, [&](int it, double r) {
       spdlog::debug("sphere bench P{} load {}/{}: Newton {} |R| / |R_load| = {:.3e}", order, step,
-                    load_steps, it + 1, r / r_load);
-    }
-    res.newton_iterations += it;
-    if (!(r <= 1e-11 * r_load))
-    {
-      KSPDestroy(&ksp);
-      VecDestroy(&x);
-      VecDestroy(&dx);
-      VecDestroy(&b);
-      MatDestroy(&A);
+                    load_steps, it, r / r_load);
+    });
+    res.newton_iterations += nr.iterations;
+    if (nr.lu_failed || !(nr.residual <= 1e-11 * r_load))
       throw SolveError(fmt::format("sphere benchmark P{}: Newton did not converge at load step {} "
-                                   "(|R| / |R_load| = {:.3e}; inf: the LU solve failed)",
-                                   order, step, r / r_load));
-    }
+                                   "(|R| / |R_load| = {:.3e}{})",
+                                   order, step, nr.residual / r_load,
+                                   nr.lu_failed ? "; the LU solve failed" : ""));
   }
-  KSPDestroy(&ksp);
-  VecDestroy(&x);
-  VecDestroy(&dx);
-  VecDestroy(&b);
-  MatDestroy(&A);
 
   auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
   if (order == 1)
@@ -321,7 +255,7 @@ SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double
     res.u_outer = scalar(form_sphere_bench_p2_bench_ur_outer) / scalar(form_sphere_bench_p2_bench_area_outer);
   }
   res.cells = m.mesh->topology().index_map(3)->size_global();
-  res.dofs = imap.size_global() * bs;
+  res.dofs = V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
