@@ -99,6 +99,20 @@ for p in final["parameters"]:
     print(f"calibrate from a recording: {p['name']} = {p['value']:.4g} [{lo:.4g}, {hi:.4g}], truth {truth[key]}")
 PY
   grep -q "mesh_size = 0.008" "$work/cal/calibrated.toml"
+  # Two MPI ranks give the same verdict and the same fit (to the finite-difference noise).
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -n 2 "$bin" -q diagnose \
+    "$work/recording.json" --case "$case_file" --out "$work/out_mpi" > /dev/null
+  /usr/bin/python3 - "$work" <<'PY'
+import json, sys
+from pathlib import Path
+work = Path(sys.argv[1])
+a = json.loads((work / "out" / "diagnosis.json").read_text())
+b = json.loads((work / "out_mpi" / "diagnosis.json").read_text())
+assert a["discovered"] == b["discovered"] == [], (a["discovered"], b["discovered"])
+for pa, pb in zip(a["final"]["parameters"], b["final"]["parameters"]):
+    assert abs(pa["value"] / pb["value"] - 1) < 1e-3, (pa, pb)
+print("mpirun -n 2: same verdict, mu", a["final"]["parameters"][0]["value"], b["final"]["parameters"][0]["value"])
+PY
   expect_fail "cannot be read" "$work/missing.json"
   expect_fail "unknown candidate physics 'dark_matter'" "$work/recording.json" --candidates dark_matter
   expect_fail "alpha" "$work/recording.json" --alpha 2
