@@ -88,12 +88,13 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
     if (first.gof_p > alpha)
       return fmt::format("The current model explains the recording: RMS distance {:.3f} mm against "
                          "the noise {:.3f} mm (chi2/dof = {:.3f}, p = {:.2g}); no candidate physics "
-                         "is significant at {:g}. Nothing was changed.",
+                         "is significant at {:g}. No term was added (case.diagnosed.toml: the "
+                         "current model, refitted).",
                          rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p, alpha);
     return fmt::format("The residual is systematic (RMS {:.3f} mm against the noise {:.3f} mm, "
                        "chi2/dof = {:.3f}, p = {:.2g}) but no candidate of the library explains it "
                        "significantly: the missing physics is outside the library, or a known "
-                       "parameter is wrong. Nothing was changed.",
+                       "parameter is wrong. No term was added.",
                        rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p);
   }
   std::string what;
