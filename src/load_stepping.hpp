@@ -11,9 +11,6 @@ struct LoadStepOptions
   double initial_step = 1.0; ///< first increment (in parameter units / (to - from))
   double min_step = 1.0 / 1024;
   double growth = 2.0;       ///< step growth after an easy success
-  /// Start each step after the second from the secant extrapolation of the
-  /// last two converged states (when admissible and lower in energy).
-  bool predictor = true;
 };
 
 struct LoadPathReport
@@ -22,7 +19,6 @@ struct LoadPathReport
   int failed_steps = 0;      ///< rejected (cut back) attempts
   int newton_iterations = 0;
   int linear_iterations = 0;
-  int predictions = 0;       ///< steps started from the accepted secant predictor
 };
 
 /// Drive model parameter `parameter` from `from` to `to` (fractions s in
