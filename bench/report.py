@@ -16,7 +16,8 @@ lines = ["| configuration | cells | unknowns | ranks | solver | median solve [s]
 for label, rs in groups.items():
     ok = [r for r in rs if not r.get("failed")]
     if not ok:
-        lines.append(f"| {label} | failed | | | | | | | | | |")
+        t = [r["timeout_s"] for r in rs if "timeout_s" in r]
+        lines.append(f"| {label} | {'timeout > %d s' % t[0] if t else 'failed'} | | | | | | | | | |")
         continue
     med = lambda k: statistics.median(r[k] for r in ok)
     r0 = ok[0]

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Benchmarks of one standing posture solve (not tests): wall time and peak
 # memory for meshes of about 5k, 50k and 200k tetrahedra, P1 and P2, direct
-# (MUMPS) and AMG (CG + GAMG), serial and 2 MPI ranks. Every configuration
+# (MUMPS) and AMG (GMRES + GAMG), serial and 2 MPI ranks. Every configuration
 # runs REPEATS times; the median is reported. Results: bench/results.json and
 # the table in docs/PERFORMANCE.md (written by bench/report.py).
 #
 # Usage: bash bench/run_benchmarks.sh [BUILD_DIR] [REPEATS] [FILTER]
 #   FILTER: a regular expression on the configuration label, e.g. 'P1' or '50k'.
+#   TIMEOUT (environment, seconds, default 600): a run longer than this is
+#   stopped and recorded as a timeout (the remaining repeats are skipped).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}; REPEATS=${2:-3}; FILTER=${3:-.}
@@ -32,8 +34,14 @@ for size in 5k 50k 200k; do
                --set geometry.mesh_size=${H[$size]} --set geometry.order=$order
                --set solver.linear=$linear --set output.xdmf=false --out "$work/$label")
           [ "$ranks" = 2 ] && cmd=(mpirun -n 2 "${cmd[@]}")
-          /usr/bin/time -f "%e %M" -o "$work/time" "${cmd[@]}" > /dev/null 2> "$work/err" || {
-            echo "{\"label\": \"$label\", \"failed\": true}" >> "$out"; cat "$work/err"; break; }
+          rc=0
+          timeout "${TIMEOUT:-600}" /usr/bin/time -f "%e %M" -o "$work/time" "${cmd[@]}" > /dev/null 2> "$work/err" || rc=$?
+          if [ "$rc" = 124 ]; then
+            echo "{\"label\": \"$label\", \"failed\": true, \"timeout_s\": ${TIMEOUT:-600}}" >> "$out"
+            echo "$label: timeout after ${TIMEOUT:-600} s"; break
+          elif [ "$rc" != 0 ]; then
+            echo "{\"label\": \"$label\", \"failed\": true}" >> "$out"; cat "$work/err"; break
+          fi
           read -r wall rss < "$work/time"
           /usr/bin/python3 - "$label" "$wall" "$rss" "$ranks" "${cmd[*]}" "$work/$label/summary.json" >> "$out" <<'PY'
 import json, sys

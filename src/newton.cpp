@@ -52,10 +52,19 @@ void NewtonSolver::setup_ksp()
   }
   else
   {
-    // CG + smoothed-aggregation AMG; the rigid-body modes of the displacement
-    // dofs are the near-nullspace, the interpolation is reused across Newton
-    // iterations (the sparsity never changes).
-    KSPSetType(_ksp, KSPCG);
+    // GMRES + smoothed-aggregation AMG. Not CG: far from equilibrium the
+    // tangent is indefinite where the relaxed skin and tissue are compressed,
+    // and then CG stops (indefinite matrix or preconditioner: the Chebyshev
+    // smoothers' eigenvalue estimates assume SPD), which happened at the first
+    // load step on 2 ranks and for P2. GMRES (right preconditioned, so the
+    // tolerance is on the true residual) solves the indefinite systems too;
+    // whether the direction descends is checked by the Newton loop, which
+    // shifts the diagonal if not. The rigid-body modes of the displacement
+    // dofs are the near-nullspace (block size 3), the interpolation is reused
+    // across Newton iterations (the sparsity never changes).
+    KSPSetType(_ksp, KSPGMRES);
+    KSPGMRESSetRestart(_ksp, 100);
+    KSPSetPCSide(_ksp, PC_RIGHT);
     KSPSetNormType(_ksp, KSP_NORM_UNPRECONDITIONED);
     KSPSetTolerances(_ksp, 1e-8, 1e-50, 1e8, 1000);
     PCSetType(pc, PCGAMG);
@@ -72,6 +81,9 @@ void NewtonSolver::setup_ksp()
     VecRestoreArray(coords, &c);
     MatNullSpace ns;
     MatNullSpaceCreateRigidBody(coords, &ns);
+    PetscInt bs;
+    MatGetBlockSize(_A, &bs);
+    log::debug("amg: matrix block size {}, rigid-body near-nullspace on {} local nodes", bs, n);
     MatSetNearNullSpace(_A, ns);
     MatNullSpaceDestroy(&ns);
     VecDestroy(&coords);
@@ -163,11 +175,12 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     };
     bool ok = descent();
     // Indefinite tangent (a compressed region far from equilibrium; CG
-    // reports it, LU gives a non-descent direction): shift the diagonal,
+    // reports it, LU gives a non-descent direction, AMG-preconditioned GMRES
+    // may not converge on it): shift the diagonal,
     // A_ii += sigma |A_ii|, until the direction descends (Levenberg-Marquardt
     // style; exact Newton near the solution, where the tangent is definite).
     bool shifted = false;
-    for (double sigma = 1e-2; !ok && (kits >= 0 || indefinite) && sigma <= 1e2; sigma *= 10)
+    for (double sigma = 1e-2; !ok && sigma <= 1e2; sigma *= 10)
     {
       shifted = true;
       Vec d;
