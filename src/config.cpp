@@ -60,7 +60,7 @@ std::vector<KeyInfo> build_schema()
       KeyInfo{"postures.theta_deg", KeyType::number_list, "deg", std::vector<double>{}, -180, 180,
               false, {}, "further postures by chest angle theta (SPEC.md), in [-180, 180]"},
       choice("solver.linear", "auto", {"auto", "direct", "amg"},
-             "linear solver: direct (MUMPS LU), amg (CG + GAMG with rigid-body near "
+             "linear solver: direct (MUMPS LU), amg (GMRES + GAMG with rigid-body near "
              "nullspace), auto (direct up to solver.direct_max_dofs unknowns)"),
       integer("solver.direct_max_dofs", 200000, 0, 1e9, "largest problem solved directly by 'auto'"),
       num("solver.rtol", "1", 1e-9, 0.0, 1e-2,

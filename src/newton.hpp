@@ -1,6 +1,6 @@
 #pragma once
 // Newton's method for the total energy of a Model: PETSc KSP for the linear
-// systems (MUMPS LU or CG + GAMG with the rigid-body near-nullspace, any
+// systems (MUMPS LU or GMRES + GAMG with the rigid-body near-nullspace, any
 // PETSc option overrides), and a backtracking line search that never accepts
 // an inverted element (det F <= 0) nor an energy increase.
 #include "model.hpp"
