@@ -64,11 +64,4 @@ Config Candidate::with(const Config& current, double q) const
   c.validate();
   return c;
 }
-
-double Candidate::value(const Config& c) const
-{
-  if (name == "base_springs")
-    return 1.0 / c.number("base.c");
-  return c.number(parameter);
-}
 } // namespace breastsim::calibration

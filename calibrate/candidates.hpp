@@ -27,8 +27,6 @@ struct Candidate
   bool applicable(const Config& current) const;
   /// The current case with this physics switched on at q > 0.
   Config with(const Config& current, double q) const;
-  /// q of a case that has the term on.
-  double value(const Config& c) const;
 };
 
 const std::vector<Candidate>& candidate_library();

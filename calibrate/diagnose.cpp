@@ -61,7 +61,7 @@ Config config_at(const Config& base, const std::vector<Free>& frees, const std::
 struct PointEvaluation
 {
   std::vector<std::vector<double>> distances;
-  std::vector<std::array<double, 3>> nipple_error, nipple_model;
+  std::vector<std::array<double, 3>> nipple_error;
   std::vector<double> raw; ///< recording - model [m] (distances, then landmarks)
   std::vector<double> r;   ///< raw / noise sigma
 };
@@ -108,7 +108,6 @@ public:
         d = raw[j++];
     for (std::size_t i = 0; i < np; ++i)
     {
-      e.nipple_model.push_back(obs[i].nipple);
       std::array<double, 3> err = {nan, nan, nan};
       if (_rec.postures[i].nipple)
         for (int k = 0; k < 3; ++k)
@@ -143,7 +142,7 @@ private:
 
 double normal_tail(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
 
-FitState make_state(const Recording& rec, const Config& c, const std::vector<Free>& frees,
+FitState make_state(const Config& c, const std::vector<Free>& frees,
                     const std::vector<double>& y, const Matrix& J, const PointEvaluation& e,
                     int evaluations)
 {
@@ -179,18 +178,17 @@ FitState make_state(const Recording& rec, const Config& c, const std::vector<Fre
     s.rms.push_back(std::sqrt(ss / std::max<std::size_t>(d.size(), 1)));
     s.max_abs.push_back(mx);
   }
-  (void)rec;
   return s;
 }
 
 /// Fit `frees` of `base` from y0; the state at the optimum.
-FitState fit(Evaluator& ev, const Recording& rec, const Config& base, const std::vector<Free>& frees,
+FitState fit(Evaluator& ev, const Config& base, const std::vector<Free>& frees,
              const std::vector<double>& y0, const LsqOptions& o, const std::string& label)
 {
   if (frees.empty())
   {
     const PointEvaluation e = ev(base);
-    return make_state(rec, base, frees, {}, {}, e, 1);
+    return make_state(base, frees, {}, {}, e, 1);
   }
   std::vector<double> lo, hi;
   for (const auto& f : frees)
@@ -210,7 +208,7 @@ FitState fit(Evaluator& ev, const Recording& rec, const Config& base, const std:
   log::info("{}: {} ({} evaluations)", label, r.stop_reason, r.evaluations);
   const Config c = config_at(base, frees, r.y);
   const PointEvaluation e = ev(c);
-  return make_state(rec, c, frees, r.y, r.J, e, r.evaluations + 1);
+  return make_state(c, frees, r.y, r.J, e, r.evaluations + 1);
 }
 
 std::vector<double> log_values(const FitState& s)
@@ -517,14 +515,14 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
     y0.push_back(std::log(std::clamp(f.start, f.lo, f.hi)));
 
   // 1-2. Fit the current model; noise floor; fit again with sigma_eff.
-  FitState state = fit(ev, rec, current, frees, y0, o.lsq, "fit of the current model");
+  FitState state = fit(ev, current, frees, y0, o.lsq, "fit of the current model");
   if (o.mesh_ratio > 1)
   {
     fine_ev = std::make_unique<Evaluator>(rec, comm);
     const auto sigma = noise_floor(ev, *fine_ev, rec, state, o.mesh_ratio, d);
     ev.set_sigma(sigma);
     fine_ev->set_sigma(sigma);
-    state = fit(ev, rec, current, frees, log_values(state), o.lsq, "fit of the current model");
+    state = fit(ev, current, frees, log_values(state), o.lsq, "fit of the current model");
   }
   const double kappa = o.mesh_ratio > 1 ? 1.0 / (1.0 - 1.0 / o.mesh_ratio) : 0.0;
 
@@ -579,7 +577,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
       FitState after;
       try
       {
-        after = fit(ev, rec, current, t, y, o.lsq, "refit with " + cand.name);
+        after = fit(ev, current, t, y, o.lsq, "refit with " + cand.name);
       }
       catch (const SolveError& err)
       {
@@ -619,7 +617,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current_in, const Diagnos
   // 9. Numerical uncertainty of the found values.
   if (fine_ev && (!d.discovered.empty() || d.fit_only) && !frees.empty())
   {
-    const FitState f = fit(*fine_ev, rec, finer(current, o.mesh_ratio), frees, log_values(state),
+    const FitState f = fit(*fine_ev, finer(current, o.mesh_ratio), frees, log_values(state),
                            o.lsq, "refit on the finer mesh");
     d.final_fit = with_numerical_uncertainty(state, f, o.mesh_ratio, d.se_numerical);
   }

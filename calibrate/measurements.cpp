@@ -1,8 +1,8 @@
 #include "measurements.hpp"
+#include "json_file.hpp"
 #include "errors.hpp"
 #include <cmath>
 #include <fmt/format.h>
-#include <fstream>
 #include <map>
 #include <set>
 
@@ -201,20 +201,6 @@ Measurements parse_measurements(const nlohmann::json& doc, const std::string& so
 
 Measurements read_measurements(const std::filesystem::path& file)
 {
-  std::ifstream in(file);
-  if (!in)
-    throw InputError(fmt::format("measurements file '{}' cannot be read", file.string()));
-  nlohmann::json doc;
-  try
-  {
-    doc = nlohmann::json::parse(in);
-  }
-  catch (const nlohmann::json::parse_error& e)
-  {
-    throw InputError(fmt::format("measurements file '{}' is not valid JSON (NaN and Infinity are "
-                                 "not JSON numbers): {}",
-                                 file.string(), e.what()));
-  }
-  return parse_measurements(doc, file.string());
+  return parse_measurements(read_json_file(file, "measurements file"), file.string());
 }
 } // namespace breastsim::calibration

@@ -1,8 +1,8 @@
 #include "recording.hpp"
+#include "json_file.hpp"
 #include "errors.hpp"
 #include <cmath>
 #include <fmt/format.h>
-#include <fstream>
 #include <set>
 
 namespace breastsim::calibration
@@ -146,35 +146,12 @@ Recording parse_recording(const nlohmann::json& j, const std::string& source)
 
 Recording read_recording(const std::filesystem::path& file)
 {
-  std::ifstream in(file);
-  if (!in)
-    throw InputError(fmt::format("recording '{}' cannot be read", file.string()));
-  nlohmann::json j;
-  try
-  {
-    j = nlohmann::json::parse(in);
-  }
-  catch (const nlohmann::json::parse_error& e)
-  {
-    throw InputError(fmt::format("recording '{}' is not valid JSON: {}", file.string(), e.what()));
-  }
-  return parse_recording(j, file.string());
+  return parse_recording(read_json_file(file, "recording"), file.string());
 }
 
-bool is_recording(const std::filesystem::path& file)
+bool is_recording(const nlohmann::json& doc)
 {
-  std::ifstream in(file);
-  if (!in)
-    return false;
-  try
-  {
-    const auto j = nlohmann::json::parse(in);
-    return j.is_object() && j.contains("format") && j.at("format") == recording_format;
-  }
-  catch (const nlohmann::json::parse_error&)
-  {
-    return false;
-  }
+  return doc.is_object() && doc.contains("format") && doc.at("format") == recording_format;
 }
 
 nlohmann::json to_json(const Recording& r)

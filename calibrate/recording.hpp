@@ -38,8 +38,7 @@ inline constexpr const char* recording_format = "breastsim-recording/1";
 /// Throws InputError naming the key, the value and the allowed range.
 Recording parse_recording(const nlohmann::json& j, const std::string& source);
 Recording read_recording(const std::filesystem::path& file);
-/// True if `file` is a JSON document whose "format" is recording_format
-/// (false if it cannot be read or parsed: the caller reports that).
-bool is_recording(const std::filesystem::path& file);
+/// True if the document's "format" is recording_format.
+bool is_recording(const nlohmann::json& doc);
 nlohmann::json to_json(const Recording& r);
 } // namespace breastsim::calibration

@@ -1,4 +1,5 @@
 #include "model.hpp"
+#include "ghosted_assembly.hpp"
 #include "breastsim_registry.hpp"
 #include "errors.hpp"
 #include <algorithm>
@@ -269,13 +270,7 @@ void Model::assemble_residual(Vec b, const std::string& term)
 {
   FormSet& f = forms(term);
   update_partners(term);
-  Vec b_local;
-  VecGhostGetLocalForm(b, &b_local);
-  VecSet(b_local, 0.0);
-  VecGhostRestoreLocalForm(b, &b_local);
-  fem::petsc::assemble_vector(b, *f.residual);
-  VecGhostUpdateBegin(b, ADD_VALUES, SCATTER_REVERSE);
-  VecGhostUpdateEnd(b, ADD_VALUES, SCATTER_REVERSE);
+  assemble_ghosted(b, *f.residual);
   // Partner fields: the chain rule through w = P u, b += on_k P^T E_w.
   for (auto& p : _partners)
     if (const double s = partner_weight(*p, term); s != 0.0)

@@ -1,4 +1,5 @@
 #include "partner_field.hpp"
+#include "ghosted_assembly.hpp"
 #include "errors.hpp"
 #include <algorithm>
 #include <cmath>
@@ -234,13 +235,7 @@ void PartnerField::add_gradient(Vec b, double s)
 {
   if (!_bw)
     _bw = la::petsc::create_vector(*_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
-  Vec local;
-  VecGhostGetLocalForm(_bw, &local);
-  VecSet(local, 0.0);
-  VecGhostRestoreLocalForm(_bw, &local);
-  fem::petsc::assemble_vector(_bw, *_Ew);
-  VecGhostUpdateBegin(_bw, ADD_VALUES, SCATTER_REVERSE);
-  VecGhostUpdateEnd(_bw, ADD_VALUES, SCATTER_REVERSE);
+  assemble_ghosted(_bw, *_Ew);
   VecScale(_bw, s);
   MatMultTransposeAdd(_P, _bw, b, b); // b = b + P^T (s E_w)
 }

@@ -1,4 +1,5 @@
 #include "residual_newton.hpp"
+#include "ghosted_assembly.hpp"
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/FunctionSpace.h>
@@ -40,13 +41,7 @@ ResidualNewton::~ResidualNewton()
 
 double ResidualNewton::residual_norm()
 {
-  Vec bl;
-  VecGhostGetLocalForm(_b, &bl);
-  VecSet(bl, 0.0);
-  VecGhostRestoreLocalForm(_b, &bl);
-  fem::petsc::assemble_vector(_b, *_R);
-  VecGhostUpdateBegin(_b, ADD_VALUES, SCATTER_REVERSE);
-  VecGhostUpdateEnd(_b, ADD_VALUES, SCATTER_REVERSE);
+  assemble_ghosted(_b, *_R);
   fem::petsc::set_bc(_b, _bcs, _x, -1.0);
   PetscReal n;
   VecNorm(_b, NORM_2, &n);

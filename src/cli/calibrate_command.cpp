@@ -7,6 +7,8 @@
 #include "calibrate.hpp"
 #include "diagnose.hpp"
 #include "diagnosis_output.hpp"
+#include "json_file.hpp"
+#include "measurements.hpp"
 #include "recording.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
@@ -109,15 +111,16 @@ Command add_calibrate_command(CLI::App& root)
                                              o->size));
             }
             check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
-            if (calibration::is_recording(o->measurements))
+            const std::string out
+                = o->out.empty() ? "results/" + c.text("case.name") + "_calibrated" : o->out;
+            const auto doc = calibration::read_json_file(o->measurements, "measurements file");
+            if (calibration::is_recording(doc))
             {
               // 3D surface points: the point-to-skin fit of `diagnose`, without discovery.
-              const auto rec = calibration::read_recording(o->measurements);
+              const auto rec = calibration::parse_recording(doc, o->measurements);
               calibration::DiagnoseOptions d;
               d.fit = o->fit;
               d.discover = false;
-              const std::string out
-                  = o->out.empty() ? "results/" + c.text("case.name") + "_calibrated" : o->out;
               OutputDir dir(out, MPI_COMM_WORLD);
               const auto res = calibration::diagnose(rec, c, d, MPI_COMM_WORLD);
               calibration::write_diagnosis(dir.path(), res, rec, MPI_COMM_WORLD);
@@ -128,11 +131,9 @@ Command add_calibrate_command(CLI::App& root)
                           << "/ (calibrated.toml, diagnosis.json, residual maps)\n";
               return 0;
             }
-            const auto data = calibration::read_measurements(o->measurements);
+            const auto data = calibration::parse_measurements(doc, o->measurements);
             const auto fit = calibration::parse_fit(o->fit, c);
             calibration::check_algorithm(o->algorithm);
-            const std::string out
-                = o->out.empty() ? "results/" + c.text("case.name") + "_calibrated" : o->out;
             calibration::CalibrateOptions co;
             co.optimizer.algorithm = o->algorithm;
             co.optimizer.max_evals = o->max_evals;
