@@ -62,15 +62,22 @@ std::vector<KeyInfo> build_schema()
       choice("solver.linear", "auto", {"auto", "direct", "amg"},
              "linear solver: direct (MUMPS LU), amg (GMRES + GAMG with rigid-body near "
              "nullspace), auto (direct up to solver.direct_max_dofs unknowns)"),
-      integer("solver.direct_max_dofs", 200000, 0, 1e9, "largest problem solved directly by 'auto'"),
+      integer("solver.direct_max_dofs", 20000, 0, 1e9,
+              "largest problem solved directly by 'auto' (AMG is faster beyond, "
+              "docs/PERFORMANCE.md)"),
       num("solver.rtol", "1", 1e-9, 0.0, 1e-2,
           "Newton tolerance on the residual norm relative to the full external load", true),
       num("solver.atol", "N", 1e-11, 0.0, 1.0, "absolute Newton tolerance on the residual norm"),
       boolean("solver.reuse_preconditioner", true,
               "keep the LU factors / AMG hierarchy of an earlier Jacobian while Krylov "
               "iterations stay few (rebuilt automatically)"),
-      integer("solver.max_iterations", 25, 1, 1000, "Newton iterations per load step"),
-      num("solver.initial_load_step", "1", 0.5, 0.0, 1.0,
+      boolean("solver.inexact_newton", true,
+              "solve each Newton system only to the Eisenstat-Walker tolerance (loose far "
+              "from the solution, tight near it); false: to 1e-10 (direct) / 1e-8 (amg)"),
+      num("solver.forcing_max", "1", 0.5, 0.0, 0.99,
+          "loosest linear tolerance of the inexact Newton method", true),
+      integer("solver.max_iterations", 40, 1, 1000, "Newton iterations per load step"),
+      num("solver.initial_load_step", "1", 1.0, 0.0, 1.0,
           "first load increment (fraction of the full load)", true),
       num("solver.min_load_step", "1", 1.0 / 1024, 0.0, 1.0,
           "smallest load increment before giving up", true),

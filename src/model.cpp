@@ -281,6 +281,13 @@ void Model::assemble_residual(Vec b, const std::string& term)
   VecDestroy(&ux);
 }
 
+void Model::constrain_increment(Vec du) const
+{
+  Vec ux = la::petsc::create_vector_wrap(*_u->x());
+  fem::petsc::set_bc(du, _bcs, ux, 1.0); // du = 1 * (g - u) on constrained dofs
+  VecDestroy(&ux);
+}
+
 double Model::residual_norm(const std::string& term)
 {
   Vec b = create_vector();
@@ -296,7 +303,19 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
   FormSet& f = forms(term);
   update_partners(term);
   MatZeroEntries(A);
-  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, _bcs);
+  // Straight into the CSR values once the pattern of A is known (serial AIJ);
+  // otherwise (first assembly, MPI) through PETSc, and the pattern is recorded.
+  const bool fast = _jacobian_adder.matches(A);
+  if (fast)
+  {
+    _jacobian_adder.begin(A);
+    fem::assemble_matrix([this](auto rows, auto cols, auto vals)
+                         { _jacobian_adder.add(rows, cols, vals); return 0; },
+                         *f.jacobian, _bcs);
+    _jacobian_adder.end(A);
+  }
+  else
+    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, _bcs);
   // Partner fields: A += on_k (E_uw P + P^T E_wu + P^T E_ww P), constrained
   // rows and columns excluded; added before the first final assembly so that
   // PETSc keeps these entries in the matrix structure. Entries outside the
@@ -330,6 +349,8 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
   fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *_V, _bcs);
   MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  if (!fast)
+    _jacobian_adder.record(A);
 }
 
 std::vector<std::int8_t> Model::constrained_markers() const

@@ -4,6 +4,7 @@
 // constraints, and assembly of energy, residual and Jacobian. Nothing here
 // names a specific material: parameters and terms come from forms/.
 #include "mesh_from_gmsh.hpp"
+#include "block_csr_adder.hpp"
 #include "partner_field.hpp"
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Expression.h>
@@ -71,6 +72,11 @@ public:
   double min_detF();
   /// Residual b = dPi/du with constrained rows set to u - g (ghosts updated).
   void assemble_residual(Vec b, const std::string& term = "");
+  /// Constrained entries of a Newton increment set exactly to g - u: an
+  /// iterative solve satisfies the identity rows only to its tolerance, and
+  /// a drift there would change the energy through the reaction forces
+  /// while the residual (zero in those rows) cannot see it.
+  void constrain_increment(Vec du) const;
   /// Euclidean norm of the residual (total, or of one term).
   double residual_norm(const std::string& term = "");
   /// Tangent matrix with constrained rows/columns replaced by the identity.
@@ -113,5 +119,6 @@ private:
   std::shared_ptr<dolfinx::fem::Expression<T>> _detF; // det F at the element nodes
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> _bcs;
   std::vector<std::shared_ptr<PartnerField>> _partners;
+  BlockCsrAdder _jacobian_adder{3}; ///< fast insertion once a matrix's pattern is known
 };
 } // namespace breastsim

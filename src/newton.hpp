@@ -12,15 +12,20 @@ namespace breastsim
 struct NewtonOptions
 {
   std::string linear = "auto";          ///< "direct", "amg" or "auto"
-  std::int64_t direct_max_dofs = 200000; ///< "auto": direct up to this size
+  std::int64_t direct_max_dofs = 20000;  ///< "auto": direct up to this size
   double rtol = 1e-9;                   ///< residual tolerance relative to the reference norm
   double atol = 1e-11;                  ///< absolute residual tolerance [N]
-  int max_iterations = 25;
+  int max_iterations = 40;
   int max_backtracks = 12;              ///< line search halvings
   /// Keep the preconditioner (LU factors or AMG hierarchy) of an earlier
   /// Jacobian while the Krylov solver converges quickly with it.
   bool reuse_preconditioner = true;
   int reuse_max_iterations = 12;        ///< rebuild when a reused solve needs more
+  /// Inexact Newton: solve J du = -r only to the Eisenstat-Walker forcing
+  /// tolerance eta_k (loose far from the solution, tight near it) instead of
+  /// to linear_rtol at every iteration.
+  bool inexact = true;
+  double forcing_max = 0.5;             ///< loosest linear tolerance eta_max
 };
 
 struct NewtonReport
@@ -31,6 +36,12 @@ struct NewtonReport
   double residual_norm = 0;
   std::string message;
 };
+
+/// Eisenstat-Walker (1996) forcing term, choice 2, for the linear solve of
+/// the Newton iteration with residual norm `rnorm` (previous one `rnorm_prev`,
+/// previous forcing `eta_prev`, Newton tolerance `tol`), within [eta_min, eta_max].
+double eisenstat_walker_forcing(double rnorm, double rnorm_prev, double eta_prev, double tol,
+                                double eta_min, double eta_max);
 
 /// "direct" or "amg": what options.linear means for a problem of `dofs` unknowns.
 std::string resolved_linear_solver(const NewtonOptions& options, std::int64_t dofs);
@@ -61,7 +72,7 @@ private:
   void setup_ksp();
   /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
   /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
-  int linear_solve(std::string& msg, bool* indefinite = nullptr);
+  int linear_solve(double rtol, std::string& msg, bool* indefinite = nullptr);
   Model& _model;
   NewtonOptions _opt;
   std::string _linear;
@@ -71,5 +82,7 @@ private:
   bool _stale = true; ///< rebuild the preconditioner at the next solve
   int _setups = 0;
   int _fresh_iterations = 1;
+  /// Linear tolerance of an exact Newton step (and the tightest one used).
+  double exact_rtol() const { return _linear == "direct" ? 1e-10 : 1e-8; }
 };
 } // namespace breastsim

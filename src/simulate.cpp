@@ -67,6 +67,8 @@ NewtonOptions newton_options(const Config& c)
   o.atol = c.number("solver.atol");
   o.max_iterations = static_cast<int>(c.integer("solver.max_iterations"));
   o.reuse_preconditioner = c.flag("solver.reuse_preconditioner");
+  o.inexact = c.flag("solver.inexact_newton");
+  o.forcing_max = c.number("solver.forcing_max");
   return o;
 }
 

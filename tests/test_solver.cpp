@@ -1,0 +1,203 @@
+// The nonlinear solver's building blocks: the fast Jacobian insertion, the
+// Eisenstat-Walker inexact Newton method and its bookkeeping.
+#include "block_csr_adder.hpp"
+#include "fixtures.hpp"
+#include "newton.hpp"
+#include <cmath>
+#include <gtest/gtest.h>
+
+using namespace breastsim;
+
+namespace
+{
+int comm_size()
+{
+  int n;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+double frobenius(Mat A)
+{
+  PetscReal n;
+  MatNorm(A, NORM_FROBENIUS, &n);
+  return n;
+}
+
+/// Largest |u| over the constrained dofs.
+double max_abs_constrained(const Model& m)
+{
+  std::vector<std::int8_t> marker(m.displacement()->x()->array().size(), 0);
+  for (const auto& bc : m.bcs())
+    bc->mark_dofs(marker);
+  double v = 0;
+  auto u = m.displacement()->x()->array();
+  for (std::size_t i = 0; i < marker.size(); ++i)
+    if (marker[i])
+      v = std::max(v, std::abs(u[i]));
+  return v;
+}
+} // namespace
+
+class FastJacobian : public ::testing::TestWithParam<int>
+{
+};
+
+// The second and later assemblies into a matrix go straight into its CSR
+// values; they must equal PETSc's own insertion (the first assembly) exactly.
+TEST_P(FastJacobian, EqualsPetscInsertion)
+{
+  if (comm_size() > 1)
+    GTEST_SKIP() << "the fast path is serial";
+  const int order = GetParam();
+  auto c = fixtures::coarse_case(order, order == 1 ? 0.014 : 0.02);
+  auto m = fixtures::make_model(c);
+  m->set_parameter("g_vec", {0.0, -4.0, -9.0});
+  fixtures::perturb(*m, 2e-3, 1);
+  Mat A = m->create_matrix();
+  m->assemble_jacobian(A); // through PETSc; records the pattern
+  Mat reference;
+  MatDuplicate(A, MAT_COPY_VALUES, &reference);
+  BlockCsrAdder probe(3);
+  probe.record(A);
+  ASSERT_TRUE(probe.matches(A)) << "a serial AIJ Jacobian has a 3x3-blocked pattern";
+  m->assemble_jacobian(A); // fast path
+  MatAXPY(reference, -1.0, A, SAME_NONZERO_PATTERN);
+  EXPECT_LE(frobenius(reference), 1e-14 * frobenius(A));
+  MatDestroy(&reference);
+  MatDestroy(&A);
+}
+
+INSTANTIATE_TEST_SUITE_P(P1AndP2, FastJacobian, ::testing::Values(1, 2));
+
+// A matrix whose pattern changed after recording, or a matrix that is not
+// 3x3-blocked, is never written through the recorded offsets.
+TEST(BlockCsrAdder, RefusesChangedOrUnblockedPatterns)
+{
+  Mat A;
+  MatCreateSeqAIJ(PETSC_COMM_SELF, 6, 6, 6, nullptr, &A);
+  for (PetscInt i = 0; i < 6; ++i)
+    for (PetscInt j = 0; j < 3; ++j)
+      MatSetValue(A, i, j, 1.0, INSERT_VALUES); // blocks (0,0) and (1,0)
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  BlockCsrAdder adder(3);
+  adder.record(A);
+  ASSERT_TRUE(adder.matches(A));
+  // Add an element block to (1, 0) and check the values.
+  const std::vector<std::int32_t> rows = {1}, cols = {0};
+  std::vector<PetscScalar> v(9);
+  for (int k = 0; k < 9; ++k)
+    v[k] = k;
+  adder.begin(A);
+  adder.add(rows, cols, v);
+  EXPECT_THROW(adder.add(std::vector<std::int32_t>{0}, std::vector<std::int32_t>{1}, v),
+               std::runtime_error); // block (0, 1) is not in the pattern
+  adder.end(A);
+  for (PetscInt a = 0; a < 3; ++a)
+    for (PetscInt b = 0; b < 3; ++b)
+    {
+      PetscInt r = 3 + a, col = b;
+      PetscScalar x;
+      MatGetValues(A, 1, &r, 1, &col, &x);
+      EXPECT_EQ(x, 1.0 + 3 * a + b);
+    }
+  // A new nonzero changes the pattern: the recorded offsets are stale.
+  MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
+  MatSetValue(A, 0, 5, 1.0, INSERT_VALUES);
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  EXPECT_FALSE(adder.matches(A));
+  // Row 0 now has 4 entries, rows 1 and 2 three: not blocked, never usable.
+  adder.record(A);
+  EXPECT_FALSE(adder.matches(A));
+  MatDestroy(&A);
+}
+
+TEST(InexactNewton, EisenstatWalkerForcing)
+{
+  const double g = 0.9, a = 0.5 * (1 + std::sqrt(5.0));
+  // Fast residual decrease: the linear tolerance tightens with it.
+  EXPECT_NEAR(eisenstat_walker_forcing(1e-3, 1e-1, 0.01, 1e-12, 1e-10, 0.5),
+              g * std::pow(1e-2, a), 1e-15);
+  // Slow decrease: loose, capped at eta_max.
+  EXPECT_EQ(eisenstat_walker_forcing(0.9, 1.0, 0.5, 1e-12, 1e-10, 0.5), 0.5);
+  // Safeguard: no sudden tightening after a loose solve (g eta_prev^a > 0.1).
+  EXPECT_NEAR(eisenstat_walker_forcing(1e-4, 1.0, 0.4, 1e-12, 1e-10, 0.5), g * std::pow(0.4, a),
+              1e-15);
+  // Never tighter than needed to reach the Newton tolerance.
+  EXPECT_NEAR(eisenstat_walker_forcing(1e-9, 1e-5, 1e-3, 1e-11, 1e-10, 0.5), 0.5e-2, 1e-15);
+  // And never tighter than eta_min.
+  EXPECT_EQ(eisenstat_walker_forcing(1e-12, 1.0, 1e-6, 0.0, 1e-10, 0.5), 1e-10);
+}
+
+// Inexact and exact Newton reach the same equilibrium; the inexact method
+// factorises less often (direct) and needs fewer Krylov iterations (AMG).
+TEST(InexactNewton, SameEquilibriumAsExactNewtonWithFewerSetUps)
+{
+  auto c = fixtures::coarse_case();
+  for (const std::string linear : {"direct", "amg"})
+  {
+    SCOPED_TRACE(linear);
+    std::vector<double> u[2];
+    int setups[2], krylov[2];
+    for (int inexact = 0; inexact < 2; ++inexact)
+    {
+      auto m = fixtures::make_model(c);
+      NewtonOptions o;
+      o.linear = linear;
+      o.inexact = inexact == 1;
+      NewtonSolver newton(*m, o);
+      m->set_parameter("g_vec", {0.0, 0.0, -9.81});
+      m->set_parameter("load", {1.0});
+      const double f = m->residual_norm("gravity");
+      m->set_parameter("load", {0.0});
+      auto rep = continuation(*m, newton, "load", 0.0, 1.0, LoadStepOptions{1.0}, "test", f);
+      EXPECT_EQ(rep.failed_steps, 0);
+      auto a = m->displacement()->x()->array();
+      u[inexact].assign(a.begin(), a.end());
+      setups[inexact] = newton.preconditioner_setups();
+      krylov[inexact] = rep.linear_iterations;
+      // Loose iterative solves never move the constrained dofs.
+      EXPECT_EQ(max_abs_constrained(*m), 0.0);
+    }
+    double diff = 0, size = 0;
+    for (std::size_t i = 0; i < u[0].size(); ++i)
+    {
+      diff = std::max(diff, std::abs(u[0][i] - u[1][i]));
+      size = std::max(size, std::abs(u[0][i]));
+    }
+    EXPECT_GT(size, 1e-3); // a real deformation (mm)
+    EXPECT_LT(diff, 1e-8 * size);
+    if (linear == "direct")
+      EXPECT_LT(setups[1], setups[0]);
+    else
+      EXPECT_LT(krylov[1], krylov[0]);
+  }
+}
+
+// A solve that reaches the tolerance exactly at its last allowed iteration
+// has converged.
+TEST(Newton, ConvergedAtTheLastAllowedIteration)
+{
+  auto c = fixtures::coarse_case();
+  int needed = 0;
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    auto m = fixtures::make_model(c);
+    NewtonOptions o;
+    o.linear = "direct";
+    if (pass == 1)
+      o.max_iterations = needed;
+    NewtonSolver newton(*m, o);
+    m->set_parameter("g_vec", {0.0, 0.0, -9.81});
+    m->set_parameter("load", {1.0});
+    const double f = m->residual_norm("gravity");
+    m->set_parameter("load", {0.5});
+    NewtonReport rep = newton.solve(f);
+    ASSERT_TRUE(rep.converged) << rep.message;
+    EXPECT_TRUE(rep.message.empty()) << rep.message;
+    needed = rep.iterations;
+  }
+  EXPECT_GT(needed, 2);
+}
