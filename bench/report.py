@@ -25,17 +25,24 @@ for label, rs in groups.items():
                  f"{med('solve_s'):.2f} | {len(ok)} | {med('process_wall_s'):.2f} | "
                  f"{med('peak_rss_MB_rank0'):.0f} | {r0['newton']} | {r0['krylov']} |")
 
-# Growth of the solve cost with the mesh (P1, direct, serial; and P1 amg).
+# Growth of the solve cost with the mesh (serial), between consecutive sizes
+# and over the whole range, for every order and solver measured.
+import math
 growth = []
-for lin in ("direct", "amg"):
-    pts = [(groups[f"{s}_P1_{lin}_np1"], s) for s in ("5k", "50k", "200k") if f"{s}_P1_{lin}_np1" in groups]
-    pts = [(statistics.median(r["solve_s"] for r in g if not r.get("failed")), g[0]["cells"], s)
-           for g, s in pts if any(not r.get("failed") for r in g)]
-    if len(pts) >= 2:
-        import math
-        (t0, n0, s0), (t1, n1, s1) = pts[0], pts[-1]
-        growth.append(f"- P1 {lin}, serial: solve time grows as n^{math.log(t1 / t0) / math.log(n1 / n0):.2f} "
-                      f"from {s0} ({n0} cells, {t0:.2f} s) to {s1} ({n1} cells, {t1:.2f} s).")
+for order in (1, 2):
+    for lin in ("direct", "amg"):
+        pts = []
+        for s in ("5k", "50k", "200k"):
+            ok = [r for r in groups.get(f"{s}_P{order}_{lin}_np1", []) if not r.get("failed")]
+            if ok:
+                pts.append((statistics.median(r["solve_s"] for r in ok), ok[0]["cells"], s))
+        if len(pts) < 2:
+            continue
+        pairs = list(zip(pts, pts[1:])) + ([(pts[0], pts[-1])] if len(pts) > 2 else [])
+        parts = [f"{a[2]} -> {b[2]}: n^{math.log(b[0] / a[0]) / math.log(b[1] / a[1]):.2f}"
+                 for a, b in pairs]
+        growth.append(f"- P{order} {lin}, serial: solve time grows as " + ", ".join(parts) + " ("
+                      + ", ".join(f"{s} {n} cells {t:.2f} s" for t, n, s in pts) + ").")
 
 text = open(sys.argv[2]).read() if len(sys.argv) > 2 else ""
 start, end = "<!-- bench:begin -->", "<!-- bench:end -->"

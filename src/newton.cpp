@@ -169,6 +169,9 @@ NewtonReport NewtonSolver::solve(double reference_norm)
   double rnorm = residual_norm();
   double energy = _model.energy();
   double rnorm_prev = rnorm, eta = _opt.forcing_max;
+  // A failed line search after an inexact solve is retried with an exact
+  // one before the solve gives up.
+  bool force_exact = false;
   for (rep.iterations = 0; rep.iterations < _opt.max_iterations; ++rep.iterations)
   {
     rep.residual_norm = rnorm;
@@ -188,7 +191,7 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     auto t1 = std::chrono::steady_clock::now();
     KSPSetOperators(_ksp, _A, _A);
     VecScale(_r, -1.0);
-    if (!_opt.inexact)
+    if (!_opt.inexact || force_exact)
       eta = exact_rtol();
     else if (rep.iterations > 0)
       eta = eisenstat_walker_forcing(rnorm, rnorm_prev, eta, tol, exact_rtol(), _opt.forcing_max);
@@ -270,9 +273,18 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     {
       VecCopy(_u0, u);
       _model.set_displacement(u);
+      if (eta > exact_rtol())
+      {
+        log::debug("  newton: line search failed after an inexact solve (eta {:.1e}); "
+                   "retrying with an exact one", eta);
+        force_exact = true;
+        rnorm = residual_norm();
+        continue;
+      }
       rep.message = "line search failed (no admissible decrease; det F <= 0 or energy increase)";
       break;
     }
+    force_exact = false;
     rnorm = residual_norm();
     auto t3 = std::chrono::steady_clock::now();
     auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
