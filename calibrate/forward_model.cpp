@@ -67,10 +67,8 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
   {
     // Warm start: the equilibrium of the same posture at the previous
     // parameters, solved directly at full load.
-    const auto g = gravity_vector(_postures[i].theta_deg, c.number("gravity.g"));
-    m.set_parameter("g_vec", {g[0], g[1], g[2]});
+    const double f_ext = set_gravity(m, gravity_vector(_postures[i].theta_deg, c.number("gravity.g")));
     m.set_parameter("load", {1.0});
-    const double f_ext = m.residual_norm("gravity");
     std::copy(_last[i].begin(), _last[i].end(), x.begin());
     m.displacement()->x()->scatter_fwd();
     _newton->invalidate_preconditioner();

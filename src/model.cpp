@@ -276,15 +276,15 @@ void Model::assemble_residual(Vec b, const std::string& term)
     if (const double s = partner_weight(*p, term); s != 0.0)
       p->add_gradient(b, s);
   // Constrained rows: b = u - g (zero while u satisfies the constraint).
-  Vec ux = la::petsc::create_vector_wrap(*_u->x());
-  fem::petsc::set_bc(b, _bcs, ux, -1.0);
-  VecDestroy(&ux);
+  set_constrained_entries(b, -1.0);
 }
 
-void Model::constrain_increment(Vec du) const
+void Model::constrain_increment(Vec du) const { set_constrained_entries(du, 1.0); }
+
+void Model::set_constrained_entries(Vec b, double scale) const
 {
   Vec ux = la::petsc::create_vector_wrap(*_u->x());
-  fem::petsc::set_bc(du, _bcs, ux, 1.0); // du = 1 * (g - u) on constrained dofs
+  fem::petsc::set_bc(b, _bcs, ux, scale); // b = scale (g - u) on constrained dofs
   VecDestroy(&ux);
 }
 

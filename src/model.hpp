@@ -77,6 +77,8 @@ public:
   /// a drift there would change the energy through the reaction forces
   /// while the residual (zero in those rows) cannot see it.
   void constrain_increment(Vec du) const;
+  /// 1 for every dof (unblocked, local and ghost) fixed by a Dirichlet condition.
+  std::vector<std::int8_t> constrained_markers() const;
   /// Euclidean norm of the residual (total, or of one term).
   double residual_norm(const std::string& term = "");
   /// Tangent matrix with constrained rows/columns replaced by the identity.
@@ -105,9 +107,9 @@ private:
   /// Bring the partners that `term` needs up to date (w = P u).
   void update_partners(const std::string& term);
   AffineMap partner_map(const PartnerField& p) const;
-  /// 1 for every dof (unblocked, local) fixed by a Dirichlet condition.
-  std::vector<std::int8_t> constrained_markers() const;
   std::shared_ptr<dolfinx::fem::Form<T>> create(const std::string& name, int rank);
+  /// b = scale (g - u) on the constrained dofs.
+  void set_constrained_entries(Vec b, double scale) const;
 
   TaggedDolfinxMesh _mesh;
   Constraints _constraints;

@@ -90,20 +90,24 @@ std::vector<Posture> requested_postures(const Config& c)
   return p;
 }
 
+double set_gravity(Model& model, const std::array<double, 3>& g)
+{
+  model.set_parameter("g_vec", {g[0], g[1], g[2]});
+  model.set_parameter("load", {1.0});
+  const double f_ext = model.residual_norm("gravity");
+  model.set_parameter("load", {0.0});
+  return f_ext;
+}
+
 PostureResult solve_posture(Model& model, NewtonSolver& newton, const ObservableProbe& probe,
                             const Posture& posture, const Config& c)
 {
   const auto t0 = clock_type::now();
   PostureResult r;
   r.posture = posture;
-  const auto g = gravity_vector(posture.theta_deg, c.number("gravity.g"));
-  model.set_parameter("g_vec", {g[0], g[1], g[2]});
   // Each posture starts from the neutral state.
   model.displacement()->x()->set(0.0);
-  // Force scale for the Newton tolerance: the full gravity load.
-  model.set_parameter("load", {1.0});
-  const double f_ext = model.residual_norm("gravity");
-  model.set_parameter("load", {0.0});
+  const double f_ext = set_gravity(model, gravity_vector(posture.theta_deg, c.number("gravity.g")));
   r.path = continuation(model, newton, "load", 0.0, 1.0, load_step_options(c),
                         fmt::format("posture '{}' (theta = {:g} deg)", posture.name, posture.theta_deg),
                         f_ext);

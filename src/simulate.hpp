@@ -42,6 +42,10 @@ std::vector<Posture> requested_postures(const Config& c);
 
 /// Solve one posture from the neutral state (u = 0): the gravity load is
 /// ramped from 0 to 1 with cut-back. Throws SolveError naming the posture.
+/// Set gravity to g and return the norm of the full (load = 1) gravity
+/// load, the force scale of the Newton tolerance; leaves load = 0.
+double set_gravity(Model& model, const std::array<double, 3>& g);
+
 PostureResult solve_posture(Model& model, NewtonSolver& newton, const ObservableProbe& probe,
                             const Posture& posture, const Config& c);
 

@@ -62,11 +62,8 @@ namespace breastsim::fixtures
 inline LoadPathReport solve_gravity(Model& m, std::array<double, 3> g, NewtonOptions o = {})
 {
   NewtonSolver newton(m, o);
-  m.set_parameter("g_vec", {g[0], g[1], g[2]});
   m.displacement()->x()->set(0.0);
-  m.set_parameter("load", {1.0});
-  const double f = m.residual_norm("gravity");
-  m.set_parameter("load", {0.0});
+  const double f = set_gravity(m, g);
   return continuation(m, newton, "load", 0.0, 1.0, LoadStepOptions{}, "test", f);
 }
 

@@ -287,10 +287,8 @@ TEST(Sutures, BlockFaceSewnToAPlaneEndsOnItAndSlides)
   const auto rep = close_sutures(m, c);
   EXPECT_LE(rep.max_gap, 1e-4 * L);
   // Gravity along the plane (z): the sewn face slides down, still on the plane.
-  m.set_parameter("g_vec", {0.0, 0.0, -9.81});
   NewtonSolver newton(m, newton_options(c));
-  m.set_parameter("load", {1.0});
-  const double f = m.residual_norm("gravity");
+  const double f = set_gravity(m, {0.0, 0.0, -9.81});
   continuation(m, newton, "load", 0.0, 1.0, LoadStepOptions{}, "block", f);
   auto u = m.displacement()->x()->array();
   double slide = 0;
