@@ -11,19 +11,20 @@ for r in rows:
     groups[r["label"]].append(r)
 
 lines = ["| configuration | cells | unknowns | ranks | solver | median solve [s] | runs | "
-         "median process [s] | peak RSS rank 0 [MB] | Newton | Krylov |",
-         "|---|---|---|---|---|---|---|---|---|---|---|"]
+         "median process [s] | peak RSS rank 0 [MB] | Newton | Krylov | coarse start: unknowns, Newton |",
+         "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 for label, rs in groups.items():
     ok = [r for r in rs if not r.get("failed")]
     if not ok:
         t = [r["timeout_s"] for r in rs if "timeout_s" in r]
-        lines.append(f"| {label} | {'timeout > %d s' % t[0] if t else 'failed'} | | | | | | | | | |")
+        lines.append(f"| {label} | {'timeout > %d s' % t[0] if t else 'failed'} | | | | | | | | | | |")
         continue
     med = lambda k: statistics.median(r[k] for r in ok)
     r0 = ok[0]
     lines.append(f"| {label} | {r0['cells']} | {r0['unknowns']} | {r0['ranks']} | {r0['linear']} | "
                  f"{med('solve_s'):.2f} | {len(ok)} | {med('process_wall_s'):.2f} | "
-                 f"{med('peak_rss_MB_rank0'):.0f} | {r0['newton']} | {r0['krylov']} |")
+                 f"{med('peak_rss_MB_rank0'):.0f} | {r0['newton']} | {r0['krylov']} | "
+                 + (f"{r0['coarse_unknowns']}, {r0['coarse_newton']} |" if r0.get("coarse_unknowns") else "- |"))
 
 # Growth of the solve cost with the mesh (serial), between consecutive sizes
 # and over the whole range, for every order and solver measured.

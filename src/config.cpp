@@ -74,8 +74,14 @@ std::vector<KeyInfo> build_schema()
       boolean("solver.inexact_newton", true,
               "solve each Newton system only to the Eisenstat-Walker tolerance (loose far "
               "from the solution, tight near it); false: to 1e-10 (direct) / 1e-8 (amg)"),
-      num("solver.forcing_max", "1", 0.5, 0.0, 0.99,
+      num("solver.forcing_max", "1", 0.3, 0.0, 0.99,
           "loosest linear tolerance of the inexact Newton method", true),
+      boolean("solver.coarse_start", true,
+              "grid sequencing: solve each posture first on a coarse P1 mesh "
+              "(solver.coarse_mesh_size) and start Newton from its interpolant, when the mesh "
+              "has at least 4x its unknowns (docs/PERFORMANCE.md)"),
+      num("solver.coarse_mesh_size", "m", 0.008, 0.0, 0.1,
+          "mesh size of the coarse mesh of solver.coarse_start", true),
       integer("solver.max_iterations", 40, 1, 1000, "Newton iterations per load step"),
       num("solver.initial_load_step", "1", 1.0, 0.0, 1.0,
           "first load increment (fraction of the full load)", true),

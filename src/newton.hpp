@@ -25,7 +25,7 @@ struct NewtonOptions
   /// tolerance eta_k (loose far from the solution, tight near it) instead of
   /// to linear_rtol at every iteration.
   bool inexact = true;
-  double forcing_max = 0.5;             ///< loosest linear tolerance eta_max
+  double forcing_max = 0.3;             ///< loosest linear tolerance eta_max
 };
 
 struct NewtonReport

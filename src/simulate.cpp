@@ -2,6 +2,7 @@
 #include "../meshes/half_cap.hpp"
 #include "breastsim_registry.hpp"
 #include "log.hpp"
+#include "coarse_start.hpp"
 #include "output.hpp"
 #include "surface_export.hpp"
 #include "viewer.hpp"
@@ -100,17 +101,51 @@ double set_gravity(Model& model, const std::array<double, 3>& g)
 }
 
 PostureResult solve_posture(Model& model, NewtonSolver& newton, const ObservableProbe& probe,
-                            const Posture& posture, const Config& c)
+                            const Posture& posture, const Config& c, CoarseStart* coarse)
 {
   const auto t0 = clock_type::now();
   PostureResult r;
   r.posture = posture;
-  // Each posture starts from the neutral state.
+  const std::string context = fmt::format("posture '{}' (theta = {:g} deg)", posture.name, posture.theta_deg);
+  // Each posture starts from the neutral state (or from the coarse solution
+  // of the same posture).
   model.displacement()->x()->set(0.0);
-  const double f_ext = set_gravity(model, gravity_vector(posture.theta_deg, c.number("gravity.g")));
-  r.path = continuation(model, newton, "load", 0.0, 1.0, load_step_options(c),
-                        fmt::format("posture '{}' (theta = {:g} deg)", posture.name, posture.theta_deg),
-                        f_ext);
+  const auto g = gravity_vector(posture.theta_deg, c.number("gravity.g"));
+  const double f_ext = set_gravity(model, g);
+  if (coarse)
+  {
+    model.set_parameter("load", {1.0});
+    r.coarse = coarse->guess(model, g, c);
+    if (r.coarse.used)
+    {
+      newton.invalidate_preconditioner();
+      const NewtonReport nr = newton.solve(f_ext);
+      r.path.newton_iterations = nr.iterations;
+      r.path.linear_iterations = nr.linear_iterations;
+      if (nr.converged)
+        r.path.steps = 1;
+      else
+      {
+        ++r.path.failed_steps;
+        log::info("{}: Newton from the coarse solution failed ({}); solving from u = 0", context,
+                  nr.message);
+        model.displacement()->x()->set(0.0);
+      }
+    }
+    else
+      log::info("{}: coarse start not used: {}", context, r.coarse.reason);
+    log::debug("{}: coarse start: {} coarse Newton iterations, {} fine", context,
+               r.coarse.newton_iterations, r.path.newton_iterations);
+  }
+  if (r.path.steps == 0)
+  {
+    model.set_parameter("load", {0.0});
+    const LoadPathReport p = continuation(model, newton, "load", 0.0, 1.0, load_step_options(c), context, f_ext);
+    r.path.steps = p.steps;
+    r.path.failed_steps += p.failed_steps;
+    r.path.newton_iterations += p.newton_iterations;
+    r.path.linear_iterations += p.linear_iterations;
+  }
   r.observables = probe.measure(model);
   r.seconds = since(t0);
   return r;
@@ -126,6 +161,8 @@ nlohmann::json to_json(const PostureResult& r)
   j["newton_iterations"] = r.path.newton_iterations;
   j["linear_iterations"] = r.path.linear_iterations;
   j["wall_time_s"] = r.seconds;
+  j["coarse_start"] = r.coarse.used;
+  j["coarse_newton_iterations"] = r.coarse.newton_iterations;
   return j;
 }
 
@@ -147,14 +184,15 @@ std::string observables_table(const std::vector<PostureResult>& rs)
 }
 
 std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
-                                          const Config& c, const std::filesystem::path& dir)
+                                          const Config& c, const std::filesystem::path& dir,
+                                          CoarseStart* coarse)
 {
   NewtonSolver newton(model, newton_options(c));
   std::vector<PostureResult> out;
   for (const auto& p : requested_postures(c))
   {
     log::info("solving posture '{}' (theta = {:g} deg)", p.name, p.theta_deg);
-    out.push_back(solve_posture(model, newton, probe, p, c));
+    out.push_back(solve_posture(model, newton, probe, p, c, coarse));
     write_fields(model, dir / ("displacement_" + p.name), c.flag("output.xdmf"), c.flag("output.vtk"));
     write_surface(model, p.name, p.theta_deg, dir / ("surface_" + p.name + ".json"));
   }
@@ -188,8 +226,19 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
               return s;
             }());
 
+  std::unique_ptr<CoarseStart> coarse;
+  if (coarse_start_applies(c))
+  {
+    const auto tc = clock_type::now();
+    coarse = std::make_unique<CoarseStart>(c, model);
+    res.coarse_dofs = coarse->coarse_dofs();
+    res.coarse_setup_seconds = since(tc);
+    log::info("coarse start: {} coarse unknowns (mesh size {:g} m, P1), set up in {:.2f} s",
+              res.coarse_dofs, c.number("solver.coarse_mesh_size"), res.coarse_setup_seconds);
+  }
+
   OutputDir dir(out, comm);
-  res.postures = solve_postures(model, probe, c, dir.path());
+  res.postures = solve_postures(model, probe, c, dir.path(), coarse.get());
 
   nlohmann::json j;
   j["case"] = c.text("case.name");
@@ -198,6 +247,8 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
   j["mesh"]["wall_time_s"] = res.mesh_seconds;
   j["unknowns"] = res.dofs;
   j["linear_solver"] = res.linear_solver;
+  if (coarse)
+    j["coarse_start"] = {{"unknowns", res.coarse_dofs}, {"setup_s", res.coarse_setup_seconds}};
   int size;
   MPI_Comm_size(comm, &size);
   j["mpi_ranks"] = size;

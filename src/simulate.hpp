@@ -2,6 +2,7 @@
 // The forward simulation: mesh the neutral half breast, bind the case's
 // parameters, and solve each posture from the neutral state.
 #include "../meshes/half_cap.hpp"
+#include "coarse_start.hpp"
 #include "config.hpp"
 #include "load_stepping.hpp"
 #include "mesh_quality.hpp"
@@ -17,6 +18,7 @@ struct PostureResult
   Posture posture;
   Observables observables;
   LoadPathReport path;
+  CoarseGuessReport coarse; ///< grid sequencing (src/coarse_start.hpp), if used
   double seconds = 0;
 };
 
@@ -26,6 +28,8 @@ struct SimulationResult
   std::int64_t dofs = 0;
   std::string linear_solver;
   double mesh_seconds = 0;
+  std::int64_t coarse_dofs = 0;      ///< grid sequencing: coarse unknowns (0: not used)
+  double coarse_setup_seconds = 0;   ///< coarse mesh, model and node location
   std::vector<PostureResult> postures;
 };
 
@@ -40,19 +44,22 @@ LoadStepOptions load_step_options(const Config& c);
 /// The postures requested by the case (names first, then angles).
 std::vector<Posture> requested_postures(const Config& c);
 
-/// Solve one posture from the neutral state (u = 0): the gravity load is
-/// ramped from 0 to 1 with cut-back. Throws SolveError naming the posture.
 /// Set gravity to g and return the norm of the full (load = 1) gravity
 /// load, the force scale of the Newton tolerance; leaves load = 0.
 double set_gravity(Model& model, const std::array<double, 3>& g);
 
+/// Solve one posture from the neutral state (u = 0): the gravity load is
+/// ramped from 0 to 1 with cut-back. With `coarse` (a coarse model of the
+/// same case), Newton first starts at full load from the coarse solution;
+/// if that fails, from u = 0 as above. Throws SolveError naming the posture.
 PostureResult solve_posture(Model& model, NewtonSolver& newton, const ObservableProbe& probe,
-                            const Posture& posture, const Config& c);
+                            const Posture& posture, const Config& c, CoarseStart* coarse = nullptr);
 
 /// Solve every requested posture of the case from the model's current
 /// reference and write each displacement as <dir>/displacement_<posture>.
 std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
-                                          const Config& c, const std::filesystem::path& dir);
+                                          const Config& c, const std::filesystem::path& dir,
+                                          CoarseStart* coarse = nullptr);
 
 /// The whole `simulate` job. Writes into `out` (replaced only on success).
 SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI_Comm comm);

@@ -8,7 +8,8 @@ Solver statistics (iterations, times) are not compared.
 import json
 import sys
 
-SKIP = {"newton_iterations", "linear_iterations", "wall_time_s", "load_steps", "failed_load_steps"}
+SKIP = {"newton_iterations", "linear_iterations", "wall_time_s", "load_steps", "failed_load_steps",
+        "coarse_newton_iterations"}
 
 
 def flatten(prefix, x, out):
