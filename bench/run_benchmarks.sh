@@ -9,6 +9,9 @@
 #   FILTER: a regular expression on the configuration label, e.g. 'P1' or '50k'.
 #   TIMEOUT (environment, seconds, default 600): a run longer than this is
 #   stopped and recorded as a timeout (the remaining repeats are skipped).
+#   VARIANT and EXTRA (environment): a label suffix and extra --set options,
+#   for a baseline in the same session, e.g.
+#   VARIANT=_nocoarse EXTRA="--set solver.coarse_start=false".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}; REPEATS=${2:-3}; FILTER=${3:-.}
@@ -24,7 +27,7 @@ for size in 5k 50k 200k; do
   for order in 1 2; do
     for linear in direct amg; do
       for ranks in 1 2; do
-        label="${size}_P${order}_${linear}_np${ranks}"
+        label="${size}_P${order}_${linear}_np${ranks}${VARIANT:-}"
         [[ "$label" =~ $FILTER ]] || continue
         # MUMPS on P2 beyond the 5k mesh (230k+ unknowns, dense 30x30 element
         # couplings) is far slower than AMG: only AMG runs for the larger P2 meshes.
@@ -32,7 +35,7 @@ for size in 5k 50k 200k; do
         for rep in $(seq "$REPEATS"); do
           cmd=("$BIN" -q simulate cases/default.toml --set postures.names=standing
                --set geometry.mesh_size=${H[$size]} --set geometry.order=$order
-               --set solver.linear=$linear --set output.xdmf=false --out "$work/$label")
+               --set solver.linear=$linear --set output.xdmf=false ${EXTRA:-} --out "$work/$label")
           [ "$ranks" = 2 ] && cmd=(mpirun -n 2 "${cmd[@]}")
           rc=0
           timeout "${TIMEOUT:-600}" /usr/bin/time -f "%e %M" -o "$work/time" "${cmd[@]}" > /dev/null 2> "$work/err" || rc=$?
