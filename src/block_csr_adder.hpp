@@ -1,12 +1,17 @@
 #pragma once
-// Fast addition of element matrices into an assembled serial PETSc AIJ matrix
+// Fast addition of element matrices into an assembled PETSc AIJ matrix
+// (serial SeqAIJ, or MPIAIJ: its diagonal and off-diagonal SeqAIJ parts)
 // whose nonzero pattern is made of bs x bs blocks (vector P1/P2 spaces).
 //
 // PETSc's MatSetValuesBlockedLocal on AIJ expands every element matrix into
 // scalar rows and binary-searches each of the (n bs)^2 columns; that was 75 %
 // of the Jacobian assembly (52k P1 tetrahedra: 0.12 of 0.16 s). Here one
 // search per block pair finds the block's offset in the CSR row, and the bs^2
-// values are added straight into the value array.
+// values are added straight into the value array. Under MPI, rows owned by
+// this rank go straight into the diagonal or off-diagonal part (columns
+// located through the matrix's local-to-global mapping and the off-diagonal
+// part's column map); rows of ghost nodes go through PETSc
+// (MatSetValuesBlockedLocal, communicated at assembly).
 #include <petscmat.h>
 #include <cstdint>
 #include <span>
@@ -22,23 +27,35 @@ public:
   /// record() and the pattern has not changed since.
   bool matches(Mat A) const;
   /// Record the (final-assembled) pattern of A; unusable (matches() false)
-  /// unless A is a SeqAIJ matrix with a bs-blocked pattern.
+  /// unless A is a SeqAIJ or MPIAIJ matrix with a bs-blocked pattern and
+  /// (MPIAIJ) a block local-to-global mapping.
   void record(Mat A);
   /// Between begin() and end(): A(rows, cols) += values, with rows and cols
-  /// block indices and values row-major over the expanded (scalar) indices.
+  /// local block indices (those of the matrix's local-to-global mapping;
+  /// owned rows first) and values row-major over the expanded indices.
   void begin(Mat A);
   void add(std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
            std::span<const PetscScalar> values);
   void end(Mat A);
 
 private:
+  /// Where block (i, j) of an owned block row starts: part 0 (diagonal) or
+  /// 1 (off-diagonal), at value offset `offset`, rows `stride` apart.
+  struct Slot
+  {
+    std::int32_t col;  ///< local block column
+    std::int32_t part;
+    PetscInt offset;
+    PetscInt stride;
+  };
   int _bs;
   PetscInt64 _id = -1;
   PetscObjectState _nonzero_state = -1;
-  std::vector<PetscInt> _row_start;    ///< CSR offset of scalar row bs*i
-  std::vector<PetscInt> _row_length;   ///< entries per scalar row of block row i
-  std::vector<PetscInt> _block_start;  ///< block row i's columns: _block_cols[_block_start[i]...]
-  std::vector<std::int32_t> _block_cols;
-  PetscScalar* _values = nullptr;
+  PetscInt _owned_rows = 0;            ///< owned block rows
+  std::vector<PetscInt> _row_slots;    ///< block row i's slots: _slots[_row_slots[i]...], sorted by col
+  std::vector<Slot> _slots;
+  Mat _A = nullptr, _parts[2] = {nullptr, nullptr};
+  PetscScalar* _values[2] = {nullptr, nullptr};
+  std::vector<PetscInt> _petsc_cols; ///< columns of a ghost row handed to PETSc
 };
 } // namespace breastsim

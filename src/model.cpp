@@ -303,8 +303,9 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
   FormSet& f = forms(term);
   update_partners(term);
   MatZeroEntries(A);
-  // Straight into the CSR values once the pattern of A is known (serial AIJ);
-  // otherwise (first assembly, MPI) through PETSc, and the pattern is recorded.
+  // Straight into the CSR values once the pattern of A is known (AIJ; under
+  // MPI ghost rows still through PETSc); otherwise (first assembly) through
+  // PETSc, and the pattern is recorded.
   const bool fast = _jacobian_adder.matches(A);
   if (fast)
   {
