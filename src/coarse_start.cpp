@@ -1,10 +1,11 @@
 #include "coarse_start.hpp"
 #include "errors.hpp"
-#include "log.hpp"
 #include "simulate.hpp"
 #include <cmath>
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
+#include <fmt/format.h>
+#include <mpi.h>
 #include <numeric>
 
 namespace breastsim
@@ -124,8 +125,16 @@ CoarseGuessReport CoarseStart::guess(Model& fine, const std::array<double, 3>& g
   }
   catch (const SolveError& e)
   {
-    // Every rank solves the same coarse problem: all fail alike.
     rep.reason = fmt::format("the coarse solve failed ({})", e.what());
+  }
+  // Every rank solves the same coarse problem and should agree; the
+  // decision is made collectively all the same (the steps below are).
+  int ok = rep.reason.empty() ? 1 : 0, all_ok = 0;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, fine.mesh().mesh->comm());
+  if (!all_ok)
+  {
+    if (rep.reason.empty())
+      rep.reason = "the coarse solve failed on another rank";
     return rep;
   }
 
