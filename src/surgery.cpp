@@ -1,4 +1,5 @@
 #include "surgery.hpp"
+#include "coarse_start.hpp"
 #include "breastsim_registry.hpp"
 #include "errors.hpp"
 #include "log.hpp"
@@ -138,7 +139,13 @@ SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Com
   apply_parameters(c, pre);
   r.volume_pre = 2 * pre.volume();
   log::info("surgery: pre-operative postures");
-  r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, cap.H, 0.0}), c, dir.path() / "preop");
+  // The pre-operative breast is the case's neutral cap: grid sequencing as in
+  // `simulate` (the post-operative body has no coarse counterpart).
+  std::unique_ptr<CoarseStart> coarse;
+  if (coarse_start_applies(c))
+    coarse = std::make_unique<CoarseStart>(c, pre);
+  r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, cap.H, 0.0}), c, dir.path() / "preop",
+                         coarse.get());
   r.seconds_pre = since(t0);
 
   // 2. Incision and suturing (no gravity), 3. final neutral state.
