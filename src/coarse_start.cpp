@@ -1,6 +1,8 @@
 #include "coarse_start.hpp"
 #include "errors.hpp"
+#include "log.hpp"
 #include "simulate.hpp"
+#include <chrono>
 #include <cmath>
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/geometry/utils.h>
@@ -79,16 +81,27 @@ bool coarse_start_applies(const Config& c)
   return ratio >= 4.0;
 }
 
-CoarseStart::CoarseStart(const Config& c, const Model& fine)
+std::unique_ptr<CoarseStart> make_coarse_start(const Config& c, const Model& fine)
 {
+  if (!coarse_start_applies(c))
+    return nullptr;
+  auto cs = std::make_unique<CoarseStart>(c, fine);
+  log::info("coarse start: {} coarse unknowns (mesh size {:g} m, P1), set up in {:.2f} s",
+            cs->coarse_dofs(), c.number("solver.coarse_mesh_size"), cs->setup_seconds());
+  return cs;
+}
+
+CoarseStart::CoarseStart(const Config& c, const Model& fine) : _load_steps(load_step_options(c))
+{
+  const auto t0 = std::chrono::steady_clock::now();
   const Config cc = coarse_config(c);
   _coarse = std::make_unique<Model>(build_neutral_mesh(cc, MPI_COMM_SELF), fine.constraints());
   apply_parameters(cc, *_coarse);
-  NewtonOptions o = newton_options(cc);
-  _newton = std::make_unique<NewtonSolver>(*_coarse, o);
+  _newton = std::make_unique<NewtonSolver>(*_coarse, newton_options(cc));
 
   _points = fine.space()->tabulate_dof_coordinates(false);
   _cells = locate(*_coarse->mesh().mesh, _points);
+  _setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void CoarseStart::transfer_to(Model& fine) const
@@ -101,12 +114,12 @@ void CoarseStart::transfer_to(Model& fine) const
   if (values.size() != 3 * n)
     throw std::logic_error("CoarseStart: the fine model is not the one the transfer was built for");
   _coarse->displacement()->eval(_points, {n, 3}, _cells, values, {n, 3});
-  for (const auto& bc : fine.bcs())
-    bc->set(values);
-  x.scatter_fwd(); // owners' values win (a node on a coarse face may see two cells)
+  // Constraints exact; the ghost update makes the owners' values win (a node
+  // on a coarse face may see two cells).
+  fine.constrain_displacement();
 }
 
-CoarseGuessReport CoarseStart::guess(Model& fine, const std::array<double, 3>& g, const Config& c)
+CoarseGuessReport CoarseStart::guess(Model& fine, const std::array<double, 3>& g)
 {
   CoarseGuessReport rep;
   auto& x = *fine.displacement()->x();
@@ -118,8 +131,8 @@ CoarseGuessReport CoarseStart::guess(Model& fine, const std::array<double, 3>& g
   const double f_coarse = set_gravity(*_coarse, g);
   try
   {
-    LoadPathReport p = continuation(*_coarse, *_newton, "load", 0.0, 1.0, load_step_options(c),
-                                    "coarse start", f_coarse);
+    LoadPathReport p = continuation(*_coarse, *_newton, "load", 0.0, 1.0, _load_steps, "coarse start",
+                                    f_coarse);
     rep.newton_iterations = p.newton_iterations;
     rep.linear_iterations = p.linear_iterations;
   }

@@ -281,6 +281,14 @@ void Model::assemble_residual(Vec b, const std::string& term)
 
 void Model::constrain_increment(Vec du) const { set_constrained_entries(du, 1.0); }
 
+void Model::constrain_displacement()
+{
+  auto x = _u->x()->mutable_array();
+  for (const auto& bc : _bcs)
+    bc->set(x, 1.0);
+  _u->x()->scatter_fwd();
+}
+
 void Model::set_constrained_entries(Vec b, double scale) const
 {
   Vec ux = la::petsc::create_vector_wrap(*_u->x());

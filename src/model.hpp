@@ -77,6 +77,8 @@ public:
   /// a drift there would change the energy through the reaction forces
   /// while the residual (zero in those rows) cannot see it.
   void constrain_increment(Vec du) const;
+  /// u = g on the constrained dofs (ghosts updated).
+  void constrain_displacement();
   /// 1 for every dof (unblocked, local and ghost) fixed by a Dirichlet condition.
   std::vector<std::int8_t> constrained_markers() const;
   /// Euclidean norm of the residual (total, or of one term).

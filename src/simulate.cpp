@@ -115,7 +115,7 @@ PostureResult solve_posture(Model& model, NewtonSolver& newton, const Observable
   if (coarse)
   {
     model.set_parameter("load", {1.0});
-    r.coarse = coarse->guess(model, g, c);
+    r.coarse = coarse->guess(model, g);
     if (r.coarse.used)
     {
       newton.invalidate_preconditioner();
@@ -226,15 +226,11 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
               return s;
             }());
 
-  std::unique_ptr<CoarseStart> coarse;
-  if (coarse_start_applies(c))
+  const auto coarse = make_coarse_start(c, model);
+  if (coarse)
   {
-    const auto tc = clock_type::now();
-    coarse = std::make_unique<CoarseStart>(c, model);
     res.coarse_dofs = coarse->coarse_dofs();
-    res.coarse_setup_seconds = since(tc);
-    log::info("coarse start: {} coarse unknowns (mesh size {:g} m, P1), set up in {:.2f} s",
-              res.coarse_dofs, c.number("solver.coarse_mesh_size"), res.coarse_setup_seconds);
+    res.coarse_setup_seconds = coarse->setup_seconds();
   }
 
   OutputDir dir(out, comm);

@@ -141,9 +141,7 @@ SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Com
   log::info("surgery: pre-operative postures");
   // The pre-operative breast is the case's neutral cap: grid sequencing as in
   // `simulate` (the post-operative body has no coarse counterpart).
-  std::unique_ptr<CoarseStart> coarse;
-  if (coarse_start_applies(c))
-    coarse = std::make_unique<CoarseStart>(c, pre);
+  const auto coarse = make_coarse_start(c, pre);
   r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, cap.H, 0.0}), c, dir.path() / "preop",
                          coarse.get());
   r.seconds_pre = since(t0);

@@ -49,10 +49,7 @@ inline void perturb(Model& m, double amp, unsigned seed, double dilation = 0)
                              + a[3 * i + 2] * x(2, p) * 10);
         return v;
       });
-  auto arr = m.displacement()->x()->mutable_array();
-  for (const auto& bc : m.bcs())
-    bc->set(arr, 1.0); // u = g (= 0) on constrained dofs
-  m.displacement()->x()->scatter_fwd();
+  m.constrain_displacement(); // u = g (= 0) on constrained dofs
 }
 } // namespace breastsim::fixtures
 
