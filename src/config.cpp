@@ -62,6 +62,10 @@ std::vector<KeyInfo> build_schema()
       choice("solver.linear", "auto", {"auto", "direct", "amg"},
              "linear solver: direct (MUMPS LU), amg (GMRES + GAMG with rigid-body near "
              "nullspace), auto (direct up to solver.direct_max_dofs unknowns)"),
+      choice("solver.amg_fine_smoother", "sor", {"sor", "chebyshev"},
+             "smoother on the finest AMG level: sor (one symmetric Gauss-Seidel sweep) or "
+             "chebyshev (GAMG's default Chebyshev/Jacobi; -mg_levels_* options then reach "
+             "the finest level too)"),
       integer("solver.direct_max_dofs", 20000, 0, 1e9,
               "largest problem solved directly by 'auto' (AMG is faster beyond, "
               "docs/PERFORMANCE.md)"),

@@ -13,6 +13,9 @@ struct NewtonOptions
 {
   std::string linear = "auto";          ///< "direct", "amg" or "auto"
   std::int64_t direct_max_dofs = 20000;  ///< "auto": direct up to this size
+  /// Smoother of the finest AMG level: "sor" (one symmetric Gauss-Seidel
+  /// sweep, Richardson) or "chebyshev" (GAMG's default, Chebyshev/Jacobi).
+  std::string amg_fine_smoother = "sor";
   double rtol = 1e-9;                   ///< residual tolerance relative to the reference norm
   double atol = 1e-11;                  ///< absolute residual tolerance [N]
   int max_iterations = 40;
@@ -39,9 +42,12 @@ struct NewtonReport
 
 /// Eisenstat-Walker (1996) forcing term, choice 2, for the linear solve of
 /// the Newton iteration with residual norm `rnorm` (previous one `rnorm_prev`,
-/// previous forcing `eta_prev`, Newton tolerance `tol`), within [eta_min, eta_max].
+/// previous forcing `eta_prev`, Newton tolerance `tol`), within [eta_min,
+/// eta_max]; 0.5 tol / rnorm when the step is predicted to finish, from the
+/// last full step's remainder |r(u + du) - r(u) - J du| (`remainder`; < 0
+/// when unknown).
 double eisenstat_walker_forcing(double rnorm, double rnorm_prev, double eta_prev, double tol,
-                                double eta_min, double eta_max);
+                                double eta_min, double eta_max, double remainder = -1);
 
 /// "direct" or "amg": what options.linear means for a problem of `dofs` unknowns.
 std::string resolved_linear_solver(const NewtonOptions& options, std::int64_t dofs);
@@ -70,6 +76,8 @@ public:
 
 private:
   void setup_ksp();
+  /// After an AMG set-up: the finest level's smoother as amg_fine_smoother says.
+  void configure_fine_smoother();
   /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
   /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
   int linear_solve(double rtol, std::string& msg, bool* indefinite = nullptr);
@@ -78,6 +86,7 @@ private:
   std::string _linear;
   Mat _A = nullptr;
   Vec _r = nullptr, _du = nullptr, _u0 = nullptr;
+  Vec _lin = nullptr; ///< linear residual -(r + J du) of the current step
   KSP _ksp = nullptr;
   bool _stale = true; ///< rebuild the preconditioner at the next solve
   int _setups = 0;
