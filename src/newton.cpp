@@ -101,16 +101,19 @@ void NewtonSolver::setup_ksp()
   KSPSetFromOptions(_ksp); // --petsc-options override the defaults above
 }
 
-// The finest level's smoother. GAMG's default there, two Chebyshev
-// iterations preconditioned by Jacobi, converges slowly on these meshes (its
-// contraction per GMRES iteration degrades from 0.44 at 3k to 0.8 at 107k P1
-// unknowns); one symmetric Gauss-Seidel sweep (SSOR, omega 1; Richardson, no
-// eigenvalue estimate) costs about as much and halves the Krylov iterations:
+// The finest level's smoother. With GAMG's default there, two Chebyshev
+// iterations preconditioned by Jacobi, the residual reduction per GMRES
+// iteration degrades with the mesh (last Newton solve of the standing
+// posture: 0.44 per iteration at 2.5k P1 unknowns, 0.80 at 107k); one
+// symmetric Gauss-Seidel sweep (SSOR, omega 1; Richardson, no eigenvalue
+// estimate) costs about as much and needs far fewer Krylov iterations:
 // 194k P1 tetrahedra 15.0 -> 10.6 s, 52k P2 52 -> 44 s (docs/PERFORMANCE.md).
-// Only the finest level: the coarse levels' 6x6 rigid-mode blocks of small
-// aggregates are singular and SOR's inode block inversion stops there (zero
-// pivot). The levels exist only after the first set-up; GAMG keeps them
-// (interpolation reused), and the check below re-applies the choice if not.
+// Only the finest level: on coarse levels (6 rigid-mode unknowns per
+// aggregate) PETSc's SOR stops with a zero pivot in its inode block inversion
+// (seen with SOR on all levels, and on level 3 of 5 at 5k P2 tetrahedra;
+// never on the finest). The levels exist only after the first set-up; GAMG
+// keeps them (interpolation reused), and the check below re-applies the
+// choice if not.
 void NewtonSolver::configure_fine_smoother()
 {
   if (_opt.amg_fine_smoother != "sor")
