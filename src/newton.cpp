@@ -22,6 +22,7 @@ NewtonSolver::NewtonSolver(Model& model, NewtonOptions options)
   _r = _model.create_vector();
   _du = _model.create_vector();
   _u0 = _model.create_vector();
+  _lin = _model.create_vector();
   _linear = resolved_linear_solver(_opt, _model.num_dofs());
   setup_ksp();
 }
@@ -33,6 +34,7 @@ NewtonSolver::~NewtonSolver()
   VecDestroy(&_r);
   VecDestroy(&_du);
   VecDestroy(&_u0);
+  VecDestroy(&_lin);
 }
 
 void NewtonSolver::setup_ksp()
@@ -105,7 +107,8 @@ void NewtonSolver::setup_ksp()
 // posture: 0.44 per iteration at 2.5k P1 unknowns, 0.80 at 107k); one
 // symmetric Gauss-Seidel sweep (SSOR, omega 1; Richardson, no eigenvalue
 // estimate) costs about as much and needs far fewer Krylov iterations:
-// 194k P1 tetrahedra 15.0 -> 10.6 s, 52k P2 52 -> 44 s (docs/PERFORMANCE.md).
+// 194k P1 tetrahedra 15.6 -> 11.2 s, 52k P2 53.5 -> 46.2 s (benchmark,
+// docs/PERFORMANCE.md).
 // Only the finest level: on coarse levels (6 rigid-mode unknowns per
 // aggregate) PETSc's SOR stops with a zero pivot in its inode block inversion
 // (seen with SOR on all levels, and on level 3 of 5 at 5k P2 tetrahedra;
@@ -147,15 +150,28 @@ void NewtonSolver::configure_fine_smoother()
 // safeguarded by max(eta_k, gamma eta_k-1^alpha) when the latter exceeds 0.1
 // (no sudden tightening), and not tighter than needed to reach the Newton
 // tolerance, 0.5 tol / |r_k| (Kelley 1995, no over-solving).
+// Finishing step: |r_k+1| <= eta_k |r_k| + q_k with the quadratic term
+// q_k = |r(u_k + du_k) - r_k - J du_k| predicted from the last full step's
+// remainder m_k-1 as q_k ~ m_k-1 (|r_k| / |r_k-1|)^2 (the step shrinks with
+// the residual), or bounded by |r_k| (|r_k| / |r_k-1|)^2 when that remainder
+// is unknown (m < 0; C |r_k-1|^2 <= |r_k|). When q_k <= tol / 2 the linear
+// term is asked for tol / 2 as well (eta_k = 0.5 tol / |r_k|), so that this
+// step converges instead of missing the tolerance by a small factor and
+// costing one more Jacobian and linear solve.
 double eisenstat_walker_forcing(double rnorm, double rnorm_prev, double eta_prev, double tol,
-                                double eta_min, double eta_max)
+                                double eta_min, double eta_max, double remainder)
 {
   const double gamma = 0.9, alpha = 0.5 * (1 + std::sqrt(5.0));
-  double eta = gamma * std::pow(rnorm / rnorm_prev, alpha);
+  const double finish = 0.5 * tol / rnorm;
+  const double ratio = rnorm / rnorm_prev;
+  const double quadratic = (remainder >= 0 ? remainder : rnorm) * ratio * ratio;
+  if (ratio < 1 && quadratic <= 0.5 * tol)
+    return std::clamp(finish, eta_min, eta_max);
+  double eta = gamma * std::pow(ratio, alpha);
   const double guard = gamma * std::pow(eta_prev, alpha);
   if (guard > 0.1)
     eta = std::max(eta, guard);
-  eta = std::max(eta, 0.5 * tol / rnorm);
+  eta = std::max(eta, finish);
   return std::clamp(eta, eta_min, eta_max);
 }
 
@@ -227,6 +243,7 @@ NewtonReport NewtonSolver::solve(double reference_norm)
   double rnorm = residual_norm();
   double energy = _model.energy();
   double rnorm_prev = rnorm, eta = _opt.forcing_max;
+  double remainder = -1; // |r(u + du) - r(u) - J du| of the last full step (-1: unknown)
   // A failed line search after an inexact solve is retried with an exact
   // one before the solve gives up.
   bool force_exact = false;
@@ -252,7 +269,8 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     if (!_opt.inexact || force_exact)
       eta = exact_rtol();
     else if (rep.iterations > 0)
-      eta = eisenstat_walker_forcing(rnorm, rnorm_prev, eta, tol, exact_rtol(), _opt.forcing_max);
+      eta = eisenstat_walker_forcing(rnorm, rnorm_prev, eta, tol, exact_rtol(), _opt.forcing_max,
+                                     remainder);
     rnorm_prev = rnorm;
     bool indefinite = false;
     int kits = linear_solve(eta, rep.message, &indefinite);
@@ -300,6 +318,16 @@ NewtonReport NewtonSolver::solve(double reference_norm)
       break;
     }
 
+    // Linear residual -(r + J du) of this step, for the remainder of a full
+    // step that predicts whether the next step can finish (forcing term).
+    // Only in the fast phase (eta < 0.1): one matrix-vector product.
+    const bool track_remainder = _opt.inexact && !shifted && eta < 0.1;
+    if (track_remainder)
+    {
+      MatMult(_A, _du, _lin);
+      VecAYPX(_lin, -1.0, _r);
+    }
+
     // Backtracking: accept the first step with det F > 0 everywhere and
     // either an Armijo energy decrease, or (energy change at round-off level)
     // a smaller residual.
@@ -344,11 +372,19 @@ NewtonReport NewtonSolver::solve(double reference_norm)
     }
     force_exact = false;
     rnorm = residual_norm();
+    remainder = -1;
+    if (track_remainder && step == 1.0)
+    {
+      VecAXPY(_lin, 1.0, _r); // r(u + du) - r(u) - J du
+      VecNorm(_lin, NORM_2, &remainder);
+    }
     auto t3 = std::chrono::steady_clock::now();
     auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-    log::debug("  newton {:2d}: |r| = {:.3e}, energy = {:.9e}, step = {:.3g}, ksp its = {} (eta {:.1e}); "
+    log::debug("  newton {:2d}: |r| = {:.3e}, energy = {:.9e}, step = {:.3g}, ksp its = {} (eta {:.1e}){}; "
                "time: jacobian {:.3f} s, linear {:.3f} s, line search {:.3f} s",
-               rep.iterations + 1, rnorm, energy, step, kits, eta, secs(t0, t1), secs(t1, t2), secs(t2, t3));
+               rep.iterations + 1, rnorm, energy, step, kits, eta,
+               remainder >= 0 ? fmt::format(", remainder {:.1e}", remainder) : std::string(),
+               secs(t0, t1), secs(t1, t2), secs(t2, t3));
   }
   if (!rep.converged && rep.iterations == _opt.max_iterations && rnorm <= tol)
   {

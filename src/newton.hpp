@@ -42,9 +42,12 @@ struct NewtonReport
 
 /// Eisenstat-Walker (1996) forcing term, choice 2, for the linear solve of
 /// the Newton iteration with residual norm `rnorm` (previous one `rnorm_prev`,
-/// previous forcing `eta_prev`, Newton tolerance `tol`), within [eta_min, eta_max].
+/// previous forcing `eta_prev`, Newton tolerance `tol`), within [eta_min,
+/// eta_max]; 0.5 tol / rnorm when the step is predicted to finish, from the
+/// last full step's remainder |r(u + du) - r(u) - J du| (`remainder`; < 0
+/// when unknown).
 double eisenstat_walker_forcing(double rnorm, double rnorm_prev, double eta_prev, double tol,
-                                double eta_min, double eta_max);
+                                double eta_min, double eta_max, double remainder = -1);
 
 /// "direct" or "amg": what options.linear means for a problem of `dofs` unknowns.
 std::string resolved_linear_solver(const NewtonOptions& options, std::int64_t dofs);
@@ -83,6 +86,7 @@ private:
   std::string _linear;
   Mat _A = nullptr;
   Vec _r = nullptr, _du = nullptr, _u0 = nullptr;
+  Vec _lin = nullptr; ///< linear residual -(r + J du) of the current step
   KSP _ksp = nullptr;
   bool _stale = true; ///< rebuild the preconditioner at the next solve
   int _setups = 0;

@@ -128,6 +128,17 @@ TEST(InexactNewton, EisenstatWalkerForcing)
   EXPECT_NEAR(eisenstat_walker_forcing(1e-9, 1e-5, 1e-3, 1e-11, 1e-10, 0.5), 0.5e-2, 1e-15);
   // And never tighter than eta_min.
   EXPECT_EQ(eisenstat_walker_forcing(1e-12, 1.0, 1e-6, 0.0, 1e-10, 0.5), 1e-10);
+  // Finishing step (residuals of the 194k-tet P1 standing solve, tol 2e-11):
+  // |r| (|r| / |r_prev|)^2 = 6.8e-12 <= tol / 2, so the step is asked to reach
+  // the tolerance (eta = tol / 2|r| = 5.0e-4) rather than Eisenstat-Walker's
+  // 1.4e-3, which left |r| = 3.0e-11 and cost one more Newton iteration.
+  EXPECT_NEAR(eisenstat_walker_forcing(1.99e-8, 1.077e-6, 0.041, 2e-11, 1e-8, 0.3),
+              0.5 * 2e-11 / 1.99e-8, 1e-15);
+  EXPECT_GT(g * std::pow(1.99e-8 / 1.077e-6, a), 2.5 * 0.5 * 2e-11 / 1.99e-8);
+  // One step earlier the quadratic bound, 6.3e-9, is far above tol / 2:
+  // Eisenstat-Walker as usual.
+  EXPECT_NEAR(eisenstat_walker_forcing(1.077e-6, 1.406e-5, 0.15, 2e-11, 1e-8, 0.3),
+              g * std::pow(1.077e-6 / 1.406e-5, a), 1e-15);
 }
 
 // Inexact and exact Newton reach the same equilibrium; the inexact method
