@@ -111,7 +111,7 @@ void NewtonSolver::setup_ksp()
 // docs/PERFORMANCE.md).
 // Only the finest level: on coarse levels (6 rigid-mode unknowns per
 // aggregate) PETSc's SOR stops with a zero pivot in its inode block inversion
-// (seen with SOR on all levels, and on level 3 of 5 at 5k P2 tetrahedra;
+// (seen with SOR on all levels, and on level 3 of 5 of a 6 mm P2 mesh;
 // never on the finest). The levels exist only after the first set-up; GAMG
 // keeps them (interpolation reused), and the check below re-applies the
 // choice if not.

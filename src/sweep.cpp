@@ -134,7 +134,7 @@ std::string sweep_table(const std::vector<SweepRow>& rows)
     s += fmt::format("{:>16} ", k);
   s += fmt::format("{:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>7} {:>7}\n", "resect", "nipple y",
                    "nipple z", "proj", "z_min", "lower/H", "gap", "newton", "time");
-  for (const auto& [k, v] : rows.front().parameters)
+  for (std::size_t k = 0; k < rows.front().parameters.size(); ++k)
     s += fmt::format("{:>16} ", "");
   s += fmt::format("{:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>7} {:>7}\n", "[cm3]", "[mm]", "[mm]",
                    "[mm]", "[mm]", "", "[mm]", "", "[s]");
