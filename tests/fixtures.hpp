@@ -6,6 +6,8 @@
 #include "simulate.hpp"
 #include "surgery.hpp"
 #include <dolfinx/la/petsc.h>
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace breastsim::fixtures
@@ -18,6 +20,24 @@ inline Config coarse_case(int order = 1, double h = 0.014)
   c.set("geometry.order", std::int64_t(order));
   c.validate();
   return c;
+}
+
+/// Largest difference max_i |a_i - b_i| of two fields and the size max_i |b_i|
+/// of the reference b (same length).
+struct MaxDifference
+{
+  double diff = 0, size = 0;
+};
+template <class A, class B>
+inline MaxDifference max_difference(const A& a, const B& b)
+{
+  MaxDifference d;
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    d.diff = std::max(d.diff, std::abs(a[i] - b[i]));
+    d.size = std::max(d.size, std::abs(b[i]));
+  }
+  return d;
 }
 
 /// Model of a case with its parameters bound.

@@ -110,12 +110,7 @@ TEST(CoarseStart, SameEquilibriumAsFromRestInFewerFineNewtonIterations)
   EXPECT_EQ(seq.path.failed_steps, 0);
   EXPECT_LT(seq.path.newton_iterations, rest.path.newton_iterations);
   const auto u_seq = m->displacement()->x()->array();
-  double diff = 0, scale = 0;
-  for (std::size_t i = 0; i < u_seq.size(); ++i)
-  {
-    diff = std::max(diff, std::abs(u_seq[i] - u_rest[i]));
-    scale = std::max(scale, std::abs(u_rest[i]));
-  }
+  const auto [diff, scale] = fixtures::max_difference(u_seq, u_rest);
   EXPECT_LT(diff, 1e-8 * scale) << "max |u_seq - u_rest| = " << diff << " of max |u| " << scale;
   EXPECT_NEAR(seq.observables.nipple[2], rest.observables.nipple[2], 1e-9);
   EXPECT_NEAR(seq.observables.volume, rest.observables.volume, 1e-12);

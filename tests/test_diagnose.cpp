@@ -174,12 +174,7 @@ TEST(Candidates, EachIsNestedAtItsNullValue)
     on.set("terms." + term, true);
     on.set(key, 0.0);
     const auto u1 = solve(on);
-    double diff = 0, size = 0;
-    for (std::size_t i = 0; i < u0.size(); ++i)
-    {
-      diff = std::max(diff, std::abs(u1[i] - u0[i]));
-      size = std::max(size, std::abs(u0[i]));
-    }
+    const auto [diff, size] = fixtures::max_difference(u1, u0);
     EXPECT_LT(diff, 1e-12 * size) << term;
     // And a positive value changes the answer (the term acts).
     on.set(key, candidate(term).typical);

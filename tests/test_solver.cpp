@@ -168,12 +168,7 @@ TEST(InexactNewton, SameEquilibriumAsExactNewtonWithFewerSetUps)
       // Loose iterative solves never move the constrained dofs.
       EXPECT_EQ(max_abs_constrained(*m), 0.0);
     }
-    double diff = 0, size = 0;
-    for (std::size_t i = 0; i < u[0].size(); ++i)
-    {
-      diff = std::max(diff, std::abs(u[0][i] - u[1][i]));
-      size = std::max(size, std::abs(u[0][i]));
-    }
+    const auto [diff, size] = fixtures::max_difference(u[1], u[0]);
     EXPECT_GT(size, 1e-3); // a real deformation (mm)
     EXPECT_LT(diff, 1e-8 * size);
     if (linear == "direct")
@@ -209,12 +204,7 @@ TEST(Newton, SorOnTheFinestAmgLevelSameEquilibriumFewerKrylovIterations)
     u[k].assign(a.begin(), a.end());
     krylov[k] = rep.linear_iterations;
   }
-  double diff = 0, size = 0;
-  for (std::size_t i = 0; i < u[0].size(); ++i)
-  {
-    diff = std::max(diff, std::abs(u[0][i] - u[1][i]));
-    size = std::max(size, std::abs(u[0][i]));
-  }
+  const auto [diff, size] = fixtures::max_difference(u[1], u[0]);
   EXPECT_GT(size, 1e-3);
   EXPECT_LT(diff, 1e-8 * size);
   EXPECT_LT(krylov[1], krylov[0]) << "sor " << krylov[1] << ", chebyshev " << krylov[0];
