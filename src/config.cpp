@@ -66,6 +66,9 @@ std::vector<KeyInfo> build_schema()
              "smoother on the finest AMG level: sor (one symmetric Gauss-Seidel sweep) or "
              "chebyshev (GAMG's default Chebyshev/Jacobi; -mg_levels_* options then reach "
              "the finest level too)"),
+      choice("solver.amg_cycle", "w", {"w", "v"},
+             "multigrid cycle of the AMG preconditioner: w (coarse levels visited twice per "
+             "level; fewer Krylov iterations on large meshes) or v"),
       integer("solver.direct_max_dofs", 20000, 0, 1e9,
               "largest problem solved directly by 'auto' (AMG is faster beyond, "
               "docs/PERFORMANCE.md)"),

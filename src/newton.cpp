@@ -101,9 +101,23 @@ void NewtonSolver::setup_ksp()
   KSPSetFromOptions(_ksp); // --petsc-options override the defaults above
 }
 
-// The finest level's smoother. With GAMG's default there, two Chebyshev
-// iterations preconditioned by Jacobi, the residual reduction per GMRES
-// iteration degrades with the mesh (last Newton solve of the standing
+// The AMG levels, once GAMG has built them (the number of levels is only
+// known after the set-up; GAMG keeps them while it reuses the interpolation,
+// and the checks below re-apply the choices if not).
+//
+// Cycle (solver.amg_cycle, default w). GAMG's first, aggressive coarsening
+// (squared graph: 19428 -> 1002 rows at 5k P2) leaves large aggregates, and
+// with plain aggregation the coarse-grid correction is the weak part of the
+// V-cycle; a W-cycle visits each coarse level twice per visit of the next
+// finer one, which costs little (they are over 10x smaller) and reduces the
+// Krylov iterations as the mesh grows (standing posture, single runs: 194k
+// P2 tetrahedra 200 -> 154, 194k P1 104 -> 81, 5k P2 87 -> 80;
+// docs/PERFORMANCE.md). A -pc_mg_cycle_type given through --petsc-options
+// wins.
+//
+// Finest smoother (solver.amg_fine_smoother). With GAMG's default there, two
+// Chebyshev iterations preconditioned by Jacobi, the residual reduction per
+// GMRES iteration degrades with the mesh (last Newton solve of the standing
 // posture: 0.44 per iteration at 2.5k P1 unknowns, 0.80 at 107k); one
 // symmetric Gauss-Seidel sweep (SSOR, omega 1; Richardson, no eigenvalue
 // estimate) costs about as much and needs far fewer Krylov iterations:
@@ -112,13 +126,9 @@ void NewtonSolver::setup_ksp()
 // Only the finest level: on coarse levels (6 rigid-mode unknowns per
 // aggregate) PETSc's SOR stops with a zero pivot in its inode block inversion
 // (seen with SOR on all levels, and on level 3 of 5 of a 6 mm P2 mesh;
-// never on the finest). The levels exist only after the first set-up; GAMG
-// keeps them (interpolation reused), and the check below re-applies the
-// choice if not.
-void NewtonSolver::configure_fine_smoother()
+// never on the finest).
+void NewtonSolver::configure_amg_levels()
 {
-  if (_opt.amg_fine_smoother != "sor")
-    return;
   PC pc;
   KSPGetPC(_ksp, &pc);
   PetscBool is_gamg;
@@ -128,6 +138,15 @@ void NewtonSolver::configure_fine_smoother()
   PetscInt levels = 0;
   PCMGGetLevels(pc, &levels);
   if (levels < 2)
+    return;
+  const char* prefix = nullptr;
+  PCGetOptionsPrefix(pc, &prefix);
+  PetscBool cycle_option = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, prefix, "-pc_mg_cycle_type", &cycle_option);
+  if (!cycle_option)
+    PCMGSetCycleType(pc, _opt.amg_cycle == "w" ? PC_MG_CYCLE_W : PC_MG_CYCLE_V);
+
+  if (_opt.amg_fine_smoother != "sor")
     return;
   KSP smoother;
   PCMGGetSmoother(pc, levels - 1, &smoother);
@@ -142,7 +161,8 @@ void NewtonSolver::configure_fine_smoother()
   PC spc;
   KSPGetPC(smoother, &spc);
   PCSetType(spc, PCSOR); // SOR_LOCAL_SYMMETRIC_SWEEP, omega 1
-  log::debug("amg: finest of {} levels smoothed by one symmetric Gauss-Seidel sweep", levels);
+  log::debug("amg: {}-cycle, finest of {} levels smoothed by one symmetric Gauss-Seidel sweep",
+             cycle_option ? "option's" : _opt.amg_cycle, levels);
 }
 
 // Eisenstat & Walker (1996), choice 2 with PETSc's constants:
@@ -195,7 +215,7 @@ int NewtonSolver::linear_solve(double rtol, std::string& msg, bool* indefinite)
     if (fresh && _linear == "amg")
     {
       KSPSetUp(_ksp); // the hierarchy, then its finest smoother
-      configure_fine_smoother();
+      configure_amg_levels();
     }
     KSPSolve(_ksp, _r, _du);
     KSPSetInitialGuessNonzero(_ksp, PETSC_FALSE);

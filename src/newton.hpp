@@ -16,6 +16,8 @@ struct NewtonOptions
   /// Smoother of the finest AMG level: "sor" (one symmetric Gauss-Seidel
   /// sweep, Richardson) or "chebyshev" (GAMG's default, Chebyshev/Jacobi).
   std::string amg_fine_smoother = "sor";
+  /// Multigrid cycle of the AMG preconditioner: "w" or "v".
+  std::string amg_cycle = "w";
   double rtol = 1e-9;                   ///< residual tolerance relative to the reference norm
   double atol = 1e-11;                  ///< absolute residual tolerance [N]
   int max_iterations = 40;
@@ -76,8 +78,9 @@ public:
 
 private:
   void setup_ksp();
-  /// After an AMG set-up: the finest level's smoother as amg_fine_smoother says.
-  void configure_fine_smoother();
+  /// After an AMG set-up: the cycle (amg_cycle) and the finest level's
+  /// smoother (amg_fine_smoother).
+  void configure_amg_levels();
   /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
   /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
   int linear_solve(double rtol, std::string& msg, bool* indefinite = nullptr);

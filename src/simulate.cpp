@@ -64,6 +64,7 @@ NewtonOptions newton_options(const Config& c)
   NewtonOptions o;
   o.linear = c.text("solver.linear");
   o.amg_fine_smoother = c.text("solver.amg_fine_smoother");
+  o.amg_cycle = c.text("solver.amg_cycle");
   o.direct_max_dofs = c.integer("solver.direct_max_dofs");
   o.rtol = c.number("solver.rtol");
   o.atol = c.number("solver.atol");
