@@ -10,8 +10,16 @@ groups = defaultdict(list)
 for r in rows:
     groups[r["label"]].append(r)
 
+def coarse_column(r):
+    """Unknowns and Newton iterations of each level of the coarse start,
+    coarse first (older results: the coarse P1 level only)."""
+    unknowns = r.get("level_unknowns", [r["coarse_unknowns"]])
+    newton = r.get("level_newton", [r["coarse_newton"]])
+    return " -> ".join(f"{u}: {n}" for u, n in zip(unknowns, newton)) + " |"
+
+
 lines = ["| configuration | cells | unknowns | ranks | solver | median solve [s] | runs | "
-         "median process [s] | peak RSS rank 0 [MB] | Newton | Krylov | coarse start: unknowns, Newton |",
+         "median process [s] | peak RSS rank 0 [MB] | Newton | Krylov | coarse start: unknowns: Newton per level |",
          "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 for label, rs in groups.items():
     ok = [r for r in rs if not r.get("failed")]
@@ -24,7 +32,7 @@ for label, rs in groups.items():
     lines.append(f"| {label} | {r0['cells']} | {r0['unknowns']} | {r0['ranks']} | {r0['linear']} | "
                  f"{med('solve_s'):.2f} | {len(ok)} | {med('process_wall_s'):.2f} | "
                  f"{med('peak_rss_MB_rank0'):.0f} | {r0['newton']} | {r0['krylov']} | "
-                 + (f"{r0['coarse_unknowns']}, {r0['coarse_newton']} |" if r0.get("coarse_unknowns") else "- |"))
+                 + (coarse_column(r0) if r0.get("coarse_unknowns") else "- |"))
 
 # Growth of the solve cost with the mesh (serial), between consecutive sizes
 # and over the whole range, for every order and solver measured.

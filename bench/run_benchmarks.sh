@@ -51,14 +51,16 @@ import json, sys
 label, wall, rss, ranks, cmd, summary = sys.argv[1:]
 s = json.load(open(summary))
 p = s["postures"][0]
-# The solve includes the coarse start's set-up (coarse mesh, model, node
-# location); the coarse solve itself is inside the posture's wall time.
+# The solve includes the coarse start's set-up (the meshes and models of its
+# levels, node location); the levels' solves are inside the posture's wall time.
 coarse = s.get("coarse_start", {})
 print(json.dumps({"label": label, "cells": s["mesh"]["cells"], "order": s["mesh"]["order"],
                   "unknowns": s["unknowns"], "linear": s["linear_solver"], "ranks": int(ranks),
                   "solve_s": p["wall_time_s"] + coarse.get("setup_s", 0.0),
                   "coarse_unknowns": coarse.get("unknowns", 0),
                   "coarse_newton": p.get("coarse_newton_iterations", 0),
+                  "level_unknowns": [l["unknowns"] for l in coarse.get("levels", [])],
+                  "level_newton": p.get("coarse_level_newton_iterations", []),
                   "process_wall_s": float(wall),
                   "peak_rss_MB_rank0": int(rss) / 1024, "newton": p["newton_iterations"],
                   "krylov": p["linear_iterations"], "command": cmd}))

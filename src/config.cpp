@@ -89,6 +89,13 @@ std::vector<KeyInfo> build_schema()
               "has at least 4x its unknowns (docs/PERFORMANCE.md)"),
       num("solver.coarse_mesh_size", "m", 0.008, 0.0, 0.1,
           "mesh size of the coarse mesh of solver.coarse_start", true),
+      num("solver.coarse_rtol", "1", 1e-6, 0.0, 1e-2,
+          "Newton tolerance (relative to the load) of the coarse start's levels: they only "
+          "provide the fine Newton's start", true),
+      integer("solver.nested_levels", 2, 0, 4,
+              "P2 cases with solver.coarse_start: at most this many intermediate P2 meshes "
+              "between the coarse P1 mesh and the case's (mesh size doubled per level), each "
+              "used when it has at least 4x the coarse unknowns"),
       integer("solver.max_iterations", 40, 1, 1000, "Newton iterations per load step"),
       num("solver.initial_load_step", "1", 1.0, 0.0, 1.0,
           "first load increment (fraction of the full load)", true),

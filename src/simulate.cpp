@@ -136,8 +136,9 @@ PostureResult solve_posture(Model& model, NewtonSolver& newton, const Observable
     }
     else
       log::info("{}: coarse start not used: {}", context, r.coarse.reason);
-    log::debug("{}: coarse start: {} coarse Newton iterations, {} fine", context,
-               r.coarse.newton_iterations, r.path.newton_iterations);
+    log::debug("{}: coarse start: {} Newton iterations on the levels below ({}), {} fine", context,
+               r.coarse.newton_iterations, fmt::join(r.coarse.level_newton_iterations, ", "),
+               r.path.newton_iterations);
   }
   if (r.path.steps == 0)
   {
@@ -165,6 +166,7 @@ nlohmann::json to_json(const PostureResult& r)
   j["wall_time_s"] = r.seconds;
   j["coarse_start"] = r.coarse.used;
   j["coarse_newton_iterations"] = r.coarse.newton_iterations;
+  j["coarse_level_newton_iterations"] = r.coarse.level_newton_iterations;
   return j;
 }
 
@@ -232,6 +234,7 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
   if (coarse)
   {
     res.coarse_dofs = coarse->coarse_dofs();
+    res.coarse_level_dofs = coarse->level_dofs();
     res.coarse_setup_seconds = coarse->setup_seconds();
   }
 
@@ -246,7 +249,18 @@ SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI
   j["unknowns"] = res.dofs;
   j["linear_solver"] = res.linear_solver;
   if (coarse)
-    j["coarse_start"] = {{"unknowns", res.coarse_dofs}, {"setup_s", res.coarse_setup_seconds}};
+  {
+    j["coarse_start"] = {{"unknowns", res.coarse_dofs}, {"setup_s", res.coarse_setup_seconds},
+                         {"levels", nlohmann::json::array()}};
+    for (std::size_t k = 0; k < coarse->num_levels(); ++k)
+    {
+      const NestedLevel& l = coarse->ladder()[k];
+      j["coarse_start"]["levels"].push_back({{"unknowns", res.coarse_level_dofs[k]},
+                                             {"mesh_size_m", l.mesh_size},
+                                             {"order", l.order},
+                                             {"refinements", l.refinements}});
+    }
+  }
   int size;
   MPI_Comm_size(comm, &size);
   j["mpi_ranks"] = size;

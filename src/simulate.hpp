@@ -29,6 +29,7 @@ struct SimulationResult
   std::string linear_solver;
   double mesh_seconds = 0;
   std::int64_t coarse_dofs = 0;      ///< grid sequencing: coarse unknowns (0: not used)
+  std::vector<std::int64_t> coarse_level_dofs; ///< unknowns of every level of the ladder
   double coarse_setup_seconds = 0;   ///< coarse mesh, model and node location
   std::vector<PostureResult> postures;
 };

@@ -9,7 +9,7 @@ import json
 import sys
 
 SKIP = {"newton_iterations", "linear_iterations", "wall_time_s", "load_steps", "failed_load_steps",
-        "coarse_newton_iterations"}
+        "coarse_newton_iterations", "coarse_level_newton_iterations"}
 
 
 def flatten(prefix, x, out):

@@ -24,7 +24,18 @@ serial_vs_mpi coarse --set geometry.mesh_size=0.005 --set solver.coarse_mesh_siz
 import json
 for p in json.load(open('$work/mpi_coarse/summary.json'))['postures']:
     assert p['coarse_start'] and p['coarse_newton_iterations'] > 0, p"
+# Nested grid sequencing (solver.nested_levels): a P2 case solved on the
+# coarse P1 mesh, then on a P2 level at twice its mesh size (curved cells),
+# every rank the whole ladder.
+serial_vs_mpi nested --set geometry.mesh_size=0.01 --set geometry.order=2 \
+  --set solver.coarse_mesh_size=0.02 --set postures.names=standing
+/usr/bin/python3 -c "
+import json
+s = json.load(open('$work/mpi_nested/summary.json'))
+assert [l['order'] for l in s['coarse_start']['levels']] == [1, 2], s['coarse_start']
+for p in s['postures']:
+    assert p['coarse_start'] and len(p['coarse_level_newton_iterations']) == 2, p"
 # The AMG path (GMRES + GAMG, finest level smoothed by SOR: on 2 ranks a
 # local symmetric sweep per rank, so the Krylov counts differ, not the result).
 serial_vs_mpi amg --set solver.linear=amg --set postures.names=standing,supine
-echo "4 passed, 0 failed"
+echo "5 passed, 0 failed"
