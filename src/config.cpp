@@ -85,8 +85,9 @@ std::vector<KeyInfo> build_schema()
           "loosest linear tolerance of the inexact Newton method", true),
       boolean("solver.coarse_start", true,
               "grid sequencing: solve each posture first on a coarse P1 mesh "
-              "(solver.coarse_mesh_size) and start Newton from its interpolant, when the mesh "
-              "has at least 4x its unknowns (docs/PERFORMANCE.md)"),
+              "(solver.coarse_mesh_size; for P2 cases then on up to solver.nested_levels P2 "
+              "meshes) and start Newton from the finest one's interpolant, when the mesh has at "
+              "least 4x the coarse unknowns (docs/PERFORMANCE.md)"),
       num("solver.coarse_mesh_size", "m", 0.008, 0.0, 0.1,
           "mesh size of the coarse mesh of solver.coarse_start", true),
       num("solver.coarse_rtol", "1", 1e-6, 0.0, 1e-2,
