@@ -12,6 +12,15 @@
 // located through the matrix's local-to-global mapping and the off-diagonal
 // part's column map); rows of ghost nodes go through PETSc
 // (MatSetValuesBlockedLocal, communicated at assembly).
+//
+// Replay: an assembly of the same form visits the same cells and facets in
+// the same order, so the first assembly with a given key records, call by
+// call, the element's rows and columns and each block's value offset; the
+// next ones with that key compare each call's rows and columns with the
+// recorded ones (exactly) and add through the recorded offsets, without
+// searching. A call that differs ends the replay for that assembly (it and
+// the rest are searched, and the next assembly records afresh), so a
+// replayed assembly always writes where a searched one would.
 #include <petscmat.h>
 #include <cstdint>
 #include <span>
@@ -33,21 +42,31 @@ public:
   /// Between begin() and end(): A(rows, cols) += values, with rows and cols
   /// local block indices (those of the matrix's local-to-global mapping;
   /// owned rows first) and values row-major over the expanded indices.
-  void begin(Mat A);
+  /// `key` names the sequence of calls (the form being assembled; nullptr:
+  /// no replay): the same key replays the offsets recorded by the last
+  /// complete assembly with that key on this pattern.
+  void begin(Mat A, const void* key = nullptr);
   void add(std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
            std::span<const PetscScalar> values);
   void end(Mat A);
+  /// Whether the last begin()..end() was replayed from start to end.
+  bool replayed() const { return _last_replayed; }
 
 private:
+  void add_ghost_row(std::size_t i, std::span<const std::int32_t> rows,
+                     std::span<const std::int32_t> cols, std::span<const PetscScalar> values);
+  enum class Mode { search, record, replay };
+
   /// Where block (i, j) of an owned block row starts: part 0 (diagonal) or
-  /// 1 (off-diagonal), at value offset `offset`, rows `stride` apart.
+  /// 1 (off-diagonal), at value offset `offset` (its rows _stride[part][i] apart).
   struct Slot
   {
     std::int32_t col;  ///< local block column
     std::int32_t part;
     PetscInt offset;
-    PetscInt stride;
   };
+  /// The slot of block (row, col), searched; throws outside the pattern.
+  const Slot& locate(std::int32_t row, std::int32_t col) const;
   int _bs;
   PetscInt64 _id = -1;
   PetscObjectState _nonzero_state = -1;
@@ -57,5 +76,18 @@ private:
   Mat _A = nullptr, _parts[2] = {nullptr, nullptr};
   PetscScalar* _values[2] = {nullptr, nullptr};
   std::vector<PetscInt> _petsc_cols; ///< columns of a ghost row handed to PETSc
+  std::vector<PetscInt> _stride[2];  ///< value distance between the rows of block row i, per part
+
+  // Replay (see above): the recorded calls' rows and columns (concatenated,
+  // with the start of each call's) and the owned blocks' offsets in order.
+  Mode _mode = Mode::search;
+  bool _replayable = false;          ///< the pattern's offsets fit in 31 bits
+  const void* _key = nullptr;        ///< key of the complete recording, nullptr: none
+  const void* _current = nullptr;    ///< key of the assembly under way
+  std::vector<std::int32_t> _indices;
+  std::vector<std::size_t> _call_start{0};
+  std::vector<std::uint32_t> _offsets;
+  std::size_t _call = 0, _position = 0;
+  bool _last_replayed = false;
 };
 } // namespace breastsim

@@ -317,7 +317,7 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
   const bool fast = _jacobian_adder.matches(A);
   if (fast)
   {
-    _jacobian_adder.begin(A);
+    _jacobian_adder.begin(A, f.jacobian.get()); // same form: replay the offsets
     fem::assemble_matrix([this](auto rows, auto cols, auto vals)
                          { _jacobian_adder.add(rows, cols, vals); return 0; },
                          *f.jacobian, _bcs);
@@ -373,18 +373,18 @@ std::vector<std::int8_t> Model::constrained_markers() const
 
 Mat Model::create_matrix()
 {
+  // The pattern of the Jacobian form, plus (partner fields on) the partner
+  // couplings E_uw P + P^T E_wu + P^T E_ww P: face A's cells with the cells
+  // holding g(X).
   bool partners = false;
   for (auto& p : _partners)
     partners = partners || partner_weight(*p, "") != 0.0;
-  if (!partners)
-    return fem::petsc::create_matrix(*forms("").jacobian, "aij");
-  // The pattern of the Jacobian form plus the partner couplings
-  // (E_uw P + P^T E_wu + P^T E_ww P: face A's cells with the cells holding g(X)).
-  update_partners("");
+  if (partners)
+    update_partners("");
   la::SparsityPattern pattern = fem::create_sparsity_pattern(*forms("").jacobian);
   for (auto& p : _partners)
   {
-    if (partner_weight(*p, "") == 0.0)
+    if (!partners || partner_weight(*p, "") == 0.0)
       continue;
     Mat K = p->hessian_coupling({});
     PetscInt r0, r1;
@@ -405,7 +405,38 @@ Mat Model::create_matrix()
     MatDestroy(&K);
   }
   pattern.assemble();
-  return la::petsc::create_matrix(_mesh.mesh->comm(), pattern, "aij");
+  Mat A = la::petsc::create_matrix(_mesh.mesh->comm(), pattern, "aij");
+  insert_pattern(A, pattern);
+  _jacobian_adder.record(A); // the first Jacobian already goes straight into the values
+  return A;
+}
+
+void Model::insert_pattern(Mat A, const la::SparsityPattern& pattern) const
+{
+  // Zeros at every entry of the pattern, one block row at a time (global,
+  // sorted columns: PETSc appends instead of searching), then the final
+  // assembly that makes the CSR structure.
+  const auto& graph = pattern.graph();
+  const std::vector<std::int64_t> global_cols = pattern.column_index_map().global_indices();
+  const std::int64_t row0 = pattern.index_map(0)->local_range()[0];
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> zeros;
+  // Owned rows only: assemble() has sent the ghost rows' entries to their owners.
+  const std::int32_t owned = pattern.index_map(0)->size_local();
+  for (std::int32_t i = 0; i < owned; ++i)
+  {
+    auto links = graph.links(i);
+    cols.resize(links.size());
+    for (std::size_t k = 0; k < links.size(); ++k)
+      cols[k] = static_cast<PetscInt>(global_cols[links[k]]);
+    std::sort(cols.begin(), cols.end());
+    zeros.assign(9 * cols.size(), 0.0);
+    const PetscInt row = static_cast<PetscInt>(row0 + i);
+    MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
+                        INSERT_VALUES);
+  }
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
 }
 
 Vec Model::create_vector() const

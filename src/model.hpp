@@ -12,6 +12,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/la/SparsityPattern.h>
 #include <map>
 #include <memory>
 #include <petscmat.h>
@@ -85,7 +86,11 @@ public:
   double residual_norm(const std::string& term = "");
   /// Tangent matrix with constrained rows/columns replaced by the identity.
   void assemble_jacobian(Mat A, const std::string& term = "");
-  /// A matrix with the sparsity of the Jacobian (AIJ, block size 3). Caller owns.
+  /// Whether the last assemble_jacobian() added every element matrix through
+  /// offsets replayed from the previous assembly (src/block_csr_adder.hpp).
+  bool last_jacobian_replayed() const { return _jacobian_adder.replayed(); }
+  /// A matrix with the sparsity of the Jacobian (AIJ, block size 3), its
+  /// pattern inserted (zeros) and recorded for fast assembly. Caller owns.
   Mat create_matrix();
   /// A ghosted vector of the displacement layout. Caller owns.
   Vec create_vector() const;
@@ -110,6 +115,8 @@ private:
   void update_partners(const std::string& term);
   AffineMap partner_map(const PartnerField& p) const;
   std::shared_ptr<dolfinx::fem::Form<T>> create(const std::string& name, int rank);
+  /// Zeros at every entry of `pattern` (block size 3) and the final assembly.
+  void insert_pattern(Mat A, const dolfinx::la::SparsityPattern& pattern) const;
   /// b = scale (g - u) on the constrained dofs.
   void set_constrained_entries(Vec b, double scale) const;
 

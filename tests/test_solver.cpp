@@ -42,10 +42,30 @@ class FastJacobian : public ::testing::TestWithParam<int>
 {
 };
 
-// The second and later assemblies into a matrix go straight into its CSR
-// values; they must equal PETSc's own insertion (the first assembly) exactly.
-// Also run on 2 ranks (ctest unit_mpi_fast_jacobian): owned rows into the
-// diagonal and off-diagonal parts, ghost rows through PETSc.
+/// A copy of A's values (same pattern). Caller owns.
+Mat copy_of(Mat A)
+{
+  Mat B;
+  MatDuplicate(A, MAT_COPY_VALUES, &B);
+  return B;
+}
+
+/// |A - B|_F / |B|_F for matrices of the same pattern.
+double relative_difference(Mat A, Mat B)
+{
+  Mat D = copy_of(A);
+  MatAXPY(D, -1.0, B, SAME_NONZERO_PATTERN);
+  const double d = frobenius(D) / frobenius(B);
+  MatDestroy(&D);
+  return d;
+}
+
+// Assemblies into a matrix of create_matrix() (pattern inserted and
+// recorded) go straight into its CSR values: the first one searches each
+// block and records the offsets, the later ones replay them. Both must equal
+// PETSc's own insertion (into a duplicate the adder has not recorded), also
+// after u changed. Also run on 2 ranks (ctest unit_mpi_fast_jacobian): owned
+// rows into the diagonal and off-diagonal parts, ghost rows through PETSc.
 TEST_P(FastJacobian, EqualsPetscInsertion)
 {
   const int order = GetParam();
@@ -54,16 +74,39 @@ TEST_P(FastJacobian, EqualsPetscInsertion)
   m->set_parameter("g_vec", {0.0, -4.0, -9.0});
   fixtures::perturb(*m, 2e-3, 1);
   Mat A = m->create_matrix();
-  m->assemble_jacobian(A); // through PETSc; records the pattern
-  Mat reference;
-  MatDuplicate(A, MAT_COPY_VALUES, &reference);
   BlockCsrAdder probe(3);
   probe.record(A);
   ASSERT_TRUE(probe.matches(A)) << "an AIJ Jacobian has a 3x3-blocked pattern (" << comm_size()
                                 << " ranks)";
-  m->assemble_jacobian(A); // fast path
-  MatAXPY(reference, -1.0, A, SAME_NONZERO_PATTERN);
-  EXPECT_LE(frobenius(reference), 1e-14 * frobenius(A));
+  // PETSc's insertion as the reference: into a duplicate the model's adder
+  // has not recorded (A is recorded again by its next assembly).
+  auto petsc_jacobian = [&]()
+  {
+    Mat R;
+    MatDuplicate(A, MAT_DO_NOT_COPY_VALUES, &R);
+    m->assemble_jacobian(R);
+    return R;
+  };
+  m->assemble_jacobian(A); // searched, offsets recorded
+  EXPECT_FALSE(m->last_jacobian_replayed());
+  Mat searched = copy_of(A);
+  m->assemble_jacobian(A); // replayed
+  EXPECT_TRUE(m->last_jacobian_replayed());
+  Mat reference = petsc_jacobian();
+  EXPECT_LE(relative_difference(searched, reference), 1e-14);
+  EXPECT_LE(relative_difference(A, reference), 1e-14);
+  MatDestroy(&reference);
+  MatDestroy(&searched);
+  // A new displacement: the replay writes the new values where PETSc does.
+  MatDestroy(&A);
+  A = m->create_matrix();
+  m->assemble_jacobian(A);
+  fixtures::perturb(*m, 3e-3, 2);
+  m->assemble_jacobian(A);
+  EXPECT_TRUE(m->last_jacobian_replayed());
+  reference = petsc_jacobian();
+  EXPECT_LE(relative_difference(A, reference), 1e-14);
+  EXPECT_GT(frobenius(reference), 0.0);
   MatDestroy(&reference);
   MatDestroy(&A);
 }
@@ -111,6 +154,78 @@ TEST(BlockCsrAdder, RefusesChangedOrUnblockedPatterns)
   // Row 0 now has 4 entries, rows 1 and 2 three: not blocked, never usable.
   adder.record(A);
   EXPECT_FALSE(adder.matches(A));
+  MatDestroy(&A);
+}
+
+// The replay of recorded offsets: the same calls with the same key add
+// through the recorded offsets; a call that differs (order, rows or
+// columns) is searched, values stay right, and the next assembly records
+// afresh; no key, or a re-recorded pattern, never replays.
+TEST(BlockCsrAdder, ReplaysOnlyTheRecordedSequence)
+{
+  Mat A;
+  MatCreateSeqAIJ(PETSC_COMM_SELF, 6, 6, 6, nullptr, &A);
+  for (PetscInt i = 0; i < 6; ++i)
+    for (PetscInt j = 0; j < 6; ++j)
+      MatSetValue(A, i, j, 0.0, INSERT_VALUES); // all four 3x3 blocks
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  BlockCsrAdder adder(3);
+  adder.record(A);
+  ASSERT_TRUE(adder.matches(A));
+  using Call = std::pair<std::vector<std::int32_t>, std::vector<PetscScalar>>; // nodes, values
+  // One assembly: each call adds values (scaled by s) on rows = cols =
+  // nodes; returns whether it was replayed and checks A against a dense sum.
+  auto assemble = [&](const std::vector<Call>& calls, double s, const void* key)
+  {
+    MatZeroEntries(A);
+    double dense[6][6] = {};
+    adder.begin(A, key);
+    for (const auto& [nodes, v] : calls)
+    {
+      std::vector<PetscScalar> w(v);
+      for (auto& x : w)
+        x *= s;
+      adder.add(nodes, nodes, w);
+      const std::size_t n = 3 * nodes.size();
+      for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = 0; b < n; ++b)
+          dense[3 * nodes[a / 3] + a % 3][3 * nodes[b / 3] + b % 3] += w[a * n + b];
+    }
+    adder.end(A);
+    for (PetscInt i = 0; i < 6; ++i)
+      for (PetscInt j = 0; j < 6; ++j)
+      {
+        PetscScalar x;
+        MatGetValues(A, 1, &i, 1, &j, &x);
+        EXPECT_EQ(x, dense[i][j]) << "entry (" << i << ", " << j << ")";
+      }
+    return adder.replayed();
+  };
+  std::vector<PetscScalar> v36(36), v9(9);
+  for (int k = 0; k < 36; ++k)
+    v36[k] = 1 + k;
+  for (int k = 0; k < 9; ++k)
+    v9[k] = 100 + k;
+  const std::vector<Call> calls = {{{0, 1}, v36}, {{1}, v9}};
+  const std::vector<Call> swapped = {{{1, 0}, v36}, {{1}, v9}};
+  const int key = 0, other = 0;
+  EXPECT_FALSE(assemble(calls, 1.0, &key)); // records
+  EXPECT_TRUE(assemble(calls, 2.0, &key));  // replays, new values
+  EXPECT_TRUE(assemble(calls, 3.0, &key));
+  EXPECT_FALSE(assemble(swapped, 1.0, &key)); // differs: searched
+  EXPECT_FALSE(assemble(swapped, 1.0, &key)); // records afresh
+  EXPECT_TRUE(assemble(swapped, 2.0, &key));
+  EXPECT_FALSE(assemble({calls[0]}, 1.0, &key)); // first call differs
+  EXPECT_FALSE(assemble({swapped[0]}, 1.0, &key)); // the recording was dropped
+  EXPECT_TRUE(assemble({swapped[0]}, 1.0, &key));
+  EXPECT_FALSE(assemble(swapped, 1.0, &key)); // more calls than recorded
+  EXPECT_FALSE(assemble(calls, 1.0, &other)); // another key records
+  EXPECT_TRUE(assemble(calls, 1.0, &other));
+  EXPECT_FALSE(assemble(calls, 1.0, nullptr)); // no key: always searched
+  adder.record(A);                              // a new recording of the pattern
+  EXPECT_FALSE(assemble(calls, 1.0, &other));
+  EXPECT_TRUE(assemble(calls, 1.0, &other));
   MatDestroy(&A);
 }
 
