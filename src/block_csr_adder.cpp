@@ -177,17 +177,13 @@ const BlockCsrAdder::Slot& BlockCsrAdder::locate(std::int32_t row, std::int32_t 
   return *it;
 }
 
-void BlockCsrAdder::add_ghost_row(std::size_t i, std::span<const std::int32_t> rows,
-                                  std::span<const std::int32_t> cols,
-                                  std::span<const PetscScalar> values)
+void BlockCsrAdder::add_ghost_row(PetscInt row, std::span<const std::int32_t> cols,
+                                  const PetscScalar* row_values)
 {
   // A ghost node's row: PETSc sends it to its owner at assembly.
-  const PetscInt row = rows[i];
-  const std::size_t bs = _bs;
   _petsc_cols.assign(cols.begin(), cols.end());
   MatSetValuesBlockedLocal(_A, 1, &row, static_cast<PetscInt>(_petsc_cols.size()),
-                           _petsc_cols.data(), values.data() + i * bs * bs * cols.size(),
-                           ADD_VALUES);
+                           _petsc_cols.data(), row_values, ADD_VALUES);
 }
 
 void BlockCsrAdder::add(std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
@@ -220,7 +216,7 @@ void BlockCsrAdder::add(std::span<const std::int32_t> rows, std::span<const std:
     const std::int32_t r = rows[i];
     if (r >= _owned_rows)
     {
-      add_ghost_row(i, rows, cols, values);
+      add_ghost_row(r, cols, values.data() + i * bs * ncols);
       continue;
     }
     const PetscInt stride[2] = {_stride[0][r], _stride[1].empty() ? 0 : _stride[1][r]};

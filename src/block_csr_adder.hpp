@@ -53,8 +53,9 @@ public:
   bool replayed() const { return _last_replayed; }
 
 private:
-  void add_ghost_row(std::size_t i, std::span<const std::int32_t> rows,
-                     std::span<const std::int32_t> cols, std::span<const PetscScalar> values);
+  /// Block row `row` (a ghost node's) of an element matrix through PETSc.
+  void add_ghost_row(PetscInt row, std::span<const std::int32_t> cols,
+                     const PetscScalar* row_values);
   enum class Mode { search, record, replay };
 
   /// Where block (i, j) of an owned block row starts: part 0 (diagonal) or

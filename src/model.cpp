@@ -384,7 +384,7 @@ Mat Model::create_matrix()
   la::SparsityPattern pattern = fem::create_sparsity_pattern(*forms("").jacobian);
   for (auto& p : _partners)
   {
-    if (!partners || partner_weight(*p, "") == 0.0)
+    if (partner_weight(*p, "") == 0.0)
       continue;
     Mat K = p->hessian_coupling({});
     PetscInt r0, r1;
@@ -419,6 +419,7 @@ void Model::insert_pattern(Mat A, const la::SparsityPattern& pattern) const
   const auto& graph = pattern.graph();
   const std::vector<std::int64_t> global_cols = pattern.column_index_map().global_indices();
   const std::int64_t row0 = pattern.index_map(0)->local_range()[0];
+  const int bs = pattern.block_size(0);
   std::vector<PetscInt> cols;
   std::vector<PetscScalar> zeros;
   // Owned rows only: assemble() has sent the ghost rows' entries to their owners.
@@ -430,7 +431,7 @@ void Model::insert_pattern(Mat A, const la::SparsityPattern& pattern) const
     for (std::size_t k = 0; k < links.size(); ++k)
       cols[k] = static_cast<PetscInt>(global_cols[links[k]]);
     std::sort(cols.begin(), cols.end());
-    zeros.assign(9 * cols.size(), 0.0);
+    zeros.assign(bs * bs * cols.size(), 0.0);
     const PetscInt row = static_cast<PetscInt>(row0 + i);
     MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
                         INSERT_VALUES);

@@ -115,7 +115,7 @@ private:
   void update_partners(const std::string& term);
   AffineMap partner_map(const PartnerField& p) const;
   std::shared_ptr<dolfinx::fem::Form<T>> create(const std::string& name, int rank);
-  /// Zeros at every entry of `pattern` (block size 3) and the final assembly.
+  /// Zeros at every entry of `pattern` (blocked) and the final assembly.
   void insert_pattern(Mat A, const dolfinx::la::SparsityPattern& pattern) const;
   /// b = scale (g - u) on the constrained dofs.
   void set_constrained_entries(Vec b, double scale) const;
