@@ -252,7 +252,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   return out;
 }
 
-void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm,
+void write_calibration(const CalibrationResult& r, const OutputTarget& out, MPI_Comm comm,
                        const CalibrationOutputOptions& o)
 {
   OutputDir dir(out, comm);

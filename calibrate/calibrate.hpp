@@ -5,6 +5,7 @@
 #include "fit_parameters.hpp"
 #include "measurements.hpp"
 #include "optimizer.hpp"
+#include "output_target.hpp"
 #include <filesystem>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -50,7 +51,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
 /// Write calibrated.toml, report.json, surface_<posture>.json and (with
 /// `pictures`) misfit_history.png, measurements.png, view_<posture>.png and
 /// overview.png into `out` (staged: replaced only when all are written).
-void write_calibration(const CalibrationResult& r, const std::filesystem::path& out, MPI_Comm comm,
+void write_calibration(const CalibrationResult& r, const OutputTarget& out, MPI_Comm comm,
                        const CalibrationOutputOptions& o = {});
 
 /// Printable summary: fitted values with intervals and flags.

@@ -1,12 +1,10 @@
 #include "calibration_plots.hpp"
 #include "errors.hpp"
+#include "interrupt.hpp"
 #include "log.hpp"
 #include "viewer.hpp"
-#include <spawn.h>
-#include <sys/wait.h>
 #include <vector>
 
-extern char** environ;
 
 namespace breastsim::calibration
 {
@@ -18,19 +16,7 @@ int run_on_root(const std::vector<std::string>& argv, MPI_Comm comm)
   int rank, code = 0;
   MPI_Comm_rank(comm, &rank);
   if (rank == 0)
-  {
-    std::vector<char*> args;
-    for (const auto& a : argv)
-      args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    pid_t pid;
-    int status = 0;
-    if (posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0
-        || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status))
-      code = -1;
-    else
-      code = WEXITSTATUS(status);
-  }
+    code = interrupt::run_child(argv);
   MPI_Bcast(&code, 1, MPI_INT, 0, comm);
   return code;
 }

@@ -23,6 +23,7 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& cp)
   j["best_values"] = p;
   j["best_chi2"] = cp.best_chi2;
   j["evaluations"] = cp.evaluations;
+  j["written_by"] = "breastsim";
   if (file.has_parent_path())
     std::filesystem::create_directories(file.parent_path());
   const auto tmp = file.string() + fmt::format(".tmp-{}", getpid());

@@ -117,11 +117,11 @@ Measurements parse_measurements(const nlohmann::json& doc, const std::string& so
   if (!doc.is_object())
     throw InputError(fmt::format("measurements '{}': expected a JSON object", source));
   static const std::set<std::string> top_keys
-      = {"units", "sigma", "postures", "base_perimeter", "breast_height", "comment"};
+      = {"units", "sigma", "postures", "base_perimeter", "breast_height", "comment", "written_by"};
   for (const auto& [k, _] : doc.items())
     if (!top_keys.count(k))
       rd.fail(k, "is not allowed (allowed: units, sigma, postures, base_perimeter, "
-                 "breast_height, comment)");
+                 "breast_height, comment, written_by)");
   if (!doc.contains("units"))
     rd.fail("units", "is missing: it must be \"SI\" (lengths in metres)");
   if (doc.at("units") != "SI")

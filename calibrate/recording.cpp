@@ -72,7 +72,7 @@ Recording parse_recording(const nlohmann::json& j, const std::string& source)
   const Reader rd{source};
   if (!j.is_object())
     rd.fail("(top level)", "must be a JSON object");
-  rd.only(j, {"format", "noise_sigma", "known", "postures", "truth", "units", "comment"}, "");
+  rd.only(j, {"format", "noise_sigma", "known", "postures", "truth", "units", "comment", "written_by"}, "");
   const auto& format = rd.require(j, "format", "");
   if (format != recording_format)
     rd.fail("format", fmt::format("= {} is not supported (expected \"{}\")", format.dump(),

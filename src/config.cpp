@@ -7,6 +7,8 @@
 #include <fmt/ranges.h>
 #include <sstream>
 #include <toml++/toml.h>
+#include <fstream>
+#include <unistd.h>
 
 namespace breastsim
 {
@@ -19,6 +21,12 @@ KeyInfo num(std::string key, std::string unit, double def, double lo, double hi,
 {
   KeyInfo k{std::move(key), KeyType::number, std::move(unit), def, lo, hi, lo_open, {},
             std::move(doc)};
+  return k;
+}
+
+KeyInfo open_range(KeyInfo k)
+{
+  k.hi_open = true;
   return k;
 }
 
@@ -42,7 +50,8 @@ std::vector<KeyInfo> build_schema()
 {
   std::vector<KeyInfo> s = {
       KeyInfo{"case.name", KeyType::string, "", std::string("breast"), -inf, inf, false, {},
-              "name of the case (used in reports)"},
+              "name of the case (reports; default result folder results/<name>): a file-name "
+              "component of 1 to 100 bytes, no '/', '\\', control characters, '.' or '..'"},
       num("geometry.R", "m", 0.07, 0.0, 0.5, "base radius of the neutral spherical cap", true),
       num("geometry.H", "m", 0.06, 0.0, 0.5,
           "height of the neutral cap (nipple at (0, H, 0)); at most 1.5 R", true),
@@ -104,13 +113,17 @@ std::vector<KeyInfo> build_schema()
           "smallest load increment before giving up", true),
       KeyInfo{"solver.petsc_options", KeyType::string, "", std::string(""), -inf, inf, false, {},
               "extra PETSc options, e.g. \"-ksp_type gmres -pc_type hypre\" (override ours)"},
-      num("incision.a_deg", "deg", 30.0, 0.0, 90.0,
-          "surgery: angle a of plane P1 with the symmetry plane", true),
+      open_range(num("incision.a_deg", "deg", 30.0, 0.0, 90.0,
+                     "surgery: angle a of plane P1 with the symmetry plane (90 deg would put "
+                     "the plane into the symmetry plane)", true)),
       num("incision.s", "m", 0.02, 0.0, 0.5, "surgery: height s of the new nipple A above the base centre"),
       num("incision.h", "m", 0.025, 0.0, 0.5, "surgery: height y_D = h of point D above the base", true),
       num("incision.d", "m", 0.045, 0.0, 0.5, "surgery: depth of C = (0, 0, -d), the new inframammary fold"),
       num("surgery.max_gap", "m", 1e-4, 0.0, 0.01,
           "largest suture gap accepted (the penalty is raised until it is met)", true),
+      num("solver.max_memory_gb", "GB", 0.0, 0.0, 1e6,
+          "refuse a case whose estimated peak memory exceeds this (0: 80 % of this machine's "
+          "memory); the estimate is in the message"),
       boolean("output.xdmf", true, "write displacement fields as XDMF (ParaView)"),
       boolean("output.vtk", false, "also write VTK files (native P2)"),
   };
@@ -151,6 +164,8 @@ std::vector<KeyInfo> build_schema()
   return s;
 }
 
+} // namespace
+
 std::string type_name(KeyType t)
 {
   switch (t)
@@ -165,6 +180,8 @@ std::string type_name(KeyType t)
   return "?";
 }
 
+namespace
+{
 std::string range_text(const KeyInfo& k)
 {
   if (!k.choices.empty())
@@ -173,7 +190,7 @@ std::string range_text(const KeyInfo& k)
     return "true or false";
   if (k.type == KeyType::string)
     return "any text";
-  return fmt::format("{}{}, {}]", k.lo_open ? "(" : "[", k.lo, k.hi);
+  return fmt::format("{}{}, {}{}", k.lo_open ? "(" : "[", k.lo, k.hi, k.hi_open ? ")" : "]");
 }
 
 std::string value_text(const Value& v)
@@ -204,7 +221,8 @@ std::string value_text(const Value& v)
 void check_number(const KeyInfo& k, double x)
 {
   const bool below = k.lo_open ? !(x > k.lo) : !(x >= k.lo);
-  if (std::isnan(x) || below || x > k.hi)
+  const bool above = k.hi_open ? !(x < k.hi) : !(x <= k.hi);
+  if (std::isnan(x) || below || above)
     throw InputError(fmt::format("key '{}' = {} is out of range: allowed {} {}", k.key, x,
                                  range_text(k), k.unit));
 }
@@ -269,16 +287,112 @@ Value from_toml(const KeyInfo& k, const toml::node& n)
   throw bad();
 }
 
-void flatten(const toml::table& t, const std::string& prefix, std::map<std::string, const toml::node*>& out)
+constexpr int max_nesting = 16; // case keys are two levels deep
+
+void flatten(const toml::table& t, const std::string& prefix, std::map<std::string, const toml::node*>& out,
+             int depth = 0)
 {
   for (const auto& [k, v] : t)
   {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     if (auto* sub = v.as_table())
-      flatten(*sub, key, out);
+    {
+      if (depth + 1 >= max_nesting)
+        throw InputError(fmt::format("unknown key '{}...': tables nested deeper than {} levels",
+                                     key.substr(0, 60), max_nesting));
+      flatten(*sub, key, out, depth + 1);
+    }
     else
       out[key] = &v;
   }
+}
+
+/// Refuse text whose keys or brackets nest deeper than max_nesting before
+/// toml++ parses it (its recursion overflows the stack on ~50,000 levels).
+void check_nesting(const std::string& text, const std::filesystem::path& path)
+{
+  int line = 1, dots = 0, brackets = 0;
+  bool in_key = true;
+  char quote = 0;
+  for (std::size_t i = 0; i < text.size(); ++i)
+  {
+    const char ch = text[i];
+    if (ch == '\n')
+    {
+      ++line;
+      dots = 0;
+      in_key = brackets == 0;
+      continue;
+    }
+    if (quote)
+    {
+      if (ch == '\\' && quote == '"')
+        ++i;
+      else if (ch == quote)
+        quote = 0;
+      continue;
+    }
+    if (ch == '"' || ch == '\'')
+      quote = ch;
+    else if (ch == '#')
+      while (i + 1 < text.size() && text[i + 1] != '\n')
+        ++i;
+    else if (ch == '=')
+      in_key = false;
+    else if (ch == '.' && in_key)
+      ++dots;
+    else if ((ch == '[' || ch == '{') && !in_key)
+      ++brackets;
+    else if ((ch == ']' || ch == '}') && !in_key && brackets > 0)
+      --brackets;
+    if (dots >= max_nesting || brackets > max_nesting)
+      throw InputError(fmt::format("case file '{}' line {}: {} nested deeper than {} levels "
+                                   "(case keys are section.key)",
+                                   path.string(), line, dots >= max_nesting ? "keys" : "values",
+                                   max_nesting));
+  }
+}
+
+/// case.name becomes a folder name: one safe path component.
+void check_case_name(const std::string& name)
+{
+  auto bad = [&](const std::string& why)
+  {
+    std::string shown;
+    for (unsigned char ch : name.substr(0, 60))
+      shown += ch < 0x20 || ch == 0x7f ? fmt::format("\\x{:02x}", ch) : std::string(1, static_cast<char>(ch));
+    return InputError(fmt::format("key 'case.name' = \"{}{}\" is not allowed: {} (allowed: 1 to 100 "
+                                  "bytes, no '/', '\\', control characters, not '.' or '..')",
+                                  shown, name.size() > 60 ? "..." : "", why));
+  };
+  if (name.empty())
+    throw bad("it is empty");
+  if (name.size() > 100)
+    throw bad(fmt::format("it is {} bytes long", name.size()));
+  if (name == "." || name == "..")
+    throw bad("it names a folder of the path itself");
+  for (unsigned char ch : name)
+  {
+    if (ch == '/' || ch == '\\')
+      throw bad("it contains a path separator");
+    if (ch < 0x20 || ch == 0x7f)
+      throw bad("it contains a control character");
+  }
+}
+
+template <typename T>
+void check_unique(const std::string& key, const std::vector<T>& xs)
+{
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (xs[i] == xs[j])
+        throw InputError(fmt::format("key '{}' lists {} twice: each posture is solved once",
+                                     key, value_text(Value(std::vector<T>{xs[i]}))));
+}
+
+double machine_memory_bytes()
+{
+  return static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
 double parse_double(const std::string& key, const std::string& s)
@@ -309,6 +423,27 @@ std::vector<std::string> split(const std::string& s)
   return out;
 }
 } // namespace
+
+std::string plain_text(const Value& v)
+{
+  if (const auto* s = std::get_if<std::string>(&v))
+    return *s;
+  return value_text(v);
+}
+
+SizeEstimate estimate_size(double R, double H, double mesh_size, int order, int refinements)
+{
+  // Half cap of a sphere of radius Rs = (R^2 + H^2) / (2 H): V = pi H^2 (3 Rs - H) / 6.
+  const double Rs = (R * R + H * H) / (2 * H);
+  const double volume = M_PI * H * H * (3 * Rs - H) / 6;
+  // gmsh's tetrahedra of size h: about 0.7 V / (h^3 / (6 sqrt 2)) (3174 measured for the
+  // default case against 4755 regular ones), times 8 per uniform refinement.
+  const double cells = 0.7 * volume / (std::pow(mesh_size, 3) / (6 * std::sqrt(2.0)))
+                       * std::pow(8.0, refinements);
+  // Peak RSS measured per cell (docs/PERFORMANCE.md): P1 ~ 6 kB, P2 ~ 11 kB, plus 150 MB.
+  const double per_cell = order == 2 ? 11e3 : 6e3;
+  return {cells, 150e6 + per_cell * cells};
+}
 
 const std::vector<KeyInfo>& schema()
 {
@@ -352,10 +487,19 @@ Config Config::from_file(const std::filesystem::path& path)
 {
   if (!std::filesystem::exists(path))
     throw InputError(fmt::format("case file '{}' does not exist", path.string()));
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(fmt::format("case file '{}' is not a regular file (a folder?): give a "
+                                 "TOML case file",
+                                 path.string()));
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof())
+    throw InputError(fmt::format("case file '{}' cannot be read", path.string()));
+  check_nesting(text, path);
   toml::table t;
   try
   {
-    t = toml::parse_file(path.string());
+    t = toml::parse(text, path.string());
   }
   catch (const toml::parse_error& e)
   {
@@ -400,6 +544,9 @@ void Config::set_text(const std::string& key, const std::string& text)
     const double x = parse_double(key, text);
     if (x != std::round(x))
       throw InputError(fmt::format("key '{}' = {} is not an integer", key, text));
+    if (!(x >= k.lo && x <= k.hi)) // before the cast: 1e30 does not fit an int64
+      throw InputError(fmt::format("key '{}' = {} is out of range: allowed {}", key, text,
+                                   range_text(k)));
     set(key, static_cast<std::int64_t>(x));
     break;
   }
@@ -472,6 +619,9 @@ void Config::validate() const
     }
   }
   // Cross-key checks.
+  check_case_name(text("case.name"));
+  check_unique("postures.names", strings("postures.names"));
+  check_unique("postures.theta_deg", numbers("postures.theta_deg"));
   const double R = number("geometry.R"), H = number("geometry.H"), h = number("geometry.mesh_size");
   if (H > 1.5 * R)
     throw InputError(fmt::format("key 'geometry.H' = {} is out of range: allowed (0, 1.5 R] = (0, {:.6g}] m "
@@ -486,6 +636,21 @@ void Config::validate() const
     throw InputError("key 'terms.base_springs' = false with base.fixed = false leaves the base "
                      "held by nothing: set base.fixed = true (clamped base) or "
                      "terms.base_springs = true");
+  if (!flag("base.fixed") && flag("terms.base_springs") && !(number("base.c") > 0))
+    throw InputError(fmt::format("key 'base.c' = {} with base.fixed = false leaves the base held "
+                                 "by nothing: give a positive spring stiffness or set base.fixed "
+                                 "= true",
+                                 number("base.c")));
+  const auto size = estimate_size(R, H, h, static_cast<int>(integer("geometry.order")),
+                                  static_cast<int>(integer("geometry.refinements")));
+  const double limit_gb = number("solver.max_memory_gb") > 0 ? number("solver.max_memory_gb")
+                                                              : 0.8 * machine_memory_bytes() / 1e9;
+  if (size.bytes > limit_gb * 1e9)
+    throw InputError(fmt::format("key 'geometry.mesh_size' = {} m (order {}, {} refinements) is "
+                                 "too fine for this machine: about {:.3g} tetrahedra needing about "
+                                 "{:.3g} GB, above the limit of {:.3g} GB (solver.max_memory_gb)",
+                                 h, integer("geometry.order"), integer("geometry.refinements"),
+                                 size.cells, size.bytes / 1e9, limit_gb));
   if (strings("postures.names").empty() && numbers("postures.theta_deg").empty())
     throw InputError("no posture requested: set postures.names and/or postures.theta_deg");
 }
@@ -500,33 +665,33 @@ nlohmann::json Config::to_json() const
 
 std::string Config::to_toml() const
 {
-  // Group keys by section (sections in order of first appearance, keys in
-  // schema order): a TOML table may only be opened once, and the schema
-  // lists fixed keys (e.g. base.fixed) apart from physics keys (base.c).
-  std::string out = "# Resolved breastsim configuration (every key, defaults included)\n";
-  std::vector<std::string> sections;
+  // toml++ writes (and escapes) every value; sections are tables.
+  toml::table root;
   for (const auto& k : schema())
   {
     const std::string sec = k.key.substr(0, k.key.find('.'));
-    if (std::find(sections.begin(), sections.end(), sec) == sections.end())
-      sections.push_back(sec);
+    const std::string name = k.key.substr(sec.size() + 1);
+    if (!root.contains(sec))
+      root.insert(sec, toml::table{});
+    toml::table& t = *root[sec].as_table();
+    std::visit(
+        [&](const auto& x)
+        {
+          using X = std::decay_t<decltype(x)>;
+          if constexpr (std::is_same_v<X, std::vector<double>> || std::is_same_v<X, std::vector<std::string>>)
+          {
+            toml::array a;
+            for (const auto& e : x)
+              a.push_back(e);
+            t.insert(name, std::move(a));
+          }
+          else
+            t.insert(name, x);
+        },
+        _values.at(k.key));
   }
-  for (const auto& sec : sections)
-  {
-    out += "\n[" + sec + "]\n";
-    for (const auto& k : schema())
-    {
-      if (k.key.substr(0, k.key.find('.')) != sec)
-        continue;
-      const Value& v = _values.at(k.key);
-      std::string text = value_text(v);
-      if (std::holds_alternative<double>(v))
-        text = fmt::format("{:.17g}", std::get<double>(v));
-      if (text.find_first_of(".eEin") == std::string::npos && std::holds_alternative<double>(v))
-        text += ".0";
-      out += k.key.substr(sec.size() + 1) + " = " + text + "\n";
-    }
-  }
-  return out;
+  std::ostringstream os;
+  os << "# Resolved breastsim configuration (every key, defaults included)\n\n" << root << "\n";
+  return os.str();
 }
 } // namespace breastsim

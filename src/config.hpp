@@ -40,6 +40,7 @@ struct KeyInfo
   std::string doc;
   std::string ufl_name; ///< UFL Constant set from this key ("" if none)
   std::size_t size = 0; ///< fixed list length (0: any)
+  bool hi_open = false; ///< upper bound excluded
 };
 
 /// All keys a case file may contain.
@@ -48,6 +49,15 @@ const std::vector<KeyInfo>& schema();
 const KeyInfo& key_info(const std::string& key);
 /// Markdown table of every key (for `breastsim keys` and README).
 std::string schema_markdown();
+std::string type_name(KeyType t);
+/// A value as plain text: 30, 0.025, true, name (for labels and tables).
+std::string plain_text(const Value& v);
+/// Estimated tetrahedra and peak memory [bytes] of a case's mesh and solve.
+struct SizeEstimate
+{
+  double cells = 0, bytes = 0;
+};
+SizeEstimate estimate_size(double R, double H, double mesh_size, int order, int refinements);
 
 class Config
 {

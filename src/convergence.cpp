@@ -1,5 +1,6 @@
 #include "convergence.hpp"
 #include "errors.hpp"
+#include "interrupt.hpp"
 #include "log.hpp"
 #include "reference_reset.hpp"
 #include "simulate.hpp"
@@ -338,9 +339,7 @@ fig.tight_layout()
 fig.savefig(sys.argv[2], dpi=120)
 )PY";
   }
-  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' '{}' > /dev/null 2>&1",
-                                      script.string(), json.string(), png.string());
-  const int rc = std::system(cmd.c_str());
+  const int rc = interrupt::run_child({"/usr/bin/python3", script.string(), json.string(), png.string()});
   return rc == 0 && std::filesystem::exists(png);
 }
 } // namespace breastsim

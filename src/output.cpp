@@ -1,5 +1,10 @@
 #include "output.hpp"
+#include "errors.hpp"
+#include "interrupt.hpp"
+#include <cerrno>
+#include <cstring>
 #include <dolfinx/io/VTKFile.h>
+#include <fmt/format.h>
 #include <dolfinx/io/XDMFFile.h>
 #include <fstream>
 #include <unistd.h>
@@ -8,49 +13,118 @@ namespace breastsim
 {
 namespace fs = std::filesystem;
 
-OutputDir::OutputDir(fs::path final_dir, MPI_Comm comm) : _final(std::move(final_dir)), _comm(comm)
+namespace
+{
+int rank_of(MPI_Comm comm)
 {
   int rank;
   MPI_Comm_rank(comm, &rank);
-  long pid = rank == 0 ? static_cast<long>(getpid()) : 0;
-  MPI_Bcast(&pid, 1, MPI_LONG, 0, comm);
-  _staging = _final.string() + ".partial-" + std::to_string(pid);
-  if (rank == 0)
+  return rank;
+}
+
+/// Run `f` on rank 0; every rank throws what it threw (as InputError or
+/// runtime_error).
+template <typename F>
+void on_root(MPI_Comm comm, F&& f)
+{
+  std::string error;
+  int input = 0;
+  if (rank_of(comm) == 0)
   {
-    fs::remove_all(_staging);
-    fs::create_directories(_staging);
+    try
+    {
+      f();
+    }
+    catch (const InputError& e)
+    {
+      error = e.what();
+      input = 1;
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what();
+    }
   }
-  MPI_Barrier(comm);
+  int n = static_cast<int>(error.size());
+  MPI_Bcast(&n, 1, MPI_INT, 0, comm);
+  MPI_Bcast(&input, 1, MPI_INT, 0, comm);
+  error.resize(n);
+  MPI_Bcast(error.data(), n, MPI_CHAR, 0, comm);
+  if (n && input)
+    throw InputError(error);
+  if (n)
+    throw std::runtime_error(error);
+}
+} // namespace
+
+OutputDir::OutputDir(const OutputTarget& target, MPI_Comm comm)
+    : _final(target.path()), _rules(target.rules()), _comm(comm)
+{
+  long pid = rank_of(comm) == 0 ? static_cast<long>(getpid()) : 0;
+  MPI_Bcast(&pid, 1, MPI_LONG, 0, comm);
+  _staging = staging_path(_final, pid);
+  on_root(comm,
+          [&]
+          {
+            if (fs::exists(fs::symlink_status(_staging)))
+              throw std::runtime_error(fmt::format("staging folder '{}' exists already", _staging.string()));
+            interrupt::register_path(_staging);
+            fs::create_directories(_staging);
+            write_marker(_staging, "staging");
+          });
 }
 
 OutputDir::~OutputDir()
 {
-  int rank = 0;
   int finalized = 0;
   MPI_Finalized(&finalized);
-  if (!finalized)
-    MPI_Comm_rank(_comm, &rank);
+  const int rank = finalized ? 0 : rank_of(_comm);
   if (!_committed && rank == 0)
   {
     std::error_code ec;
     fs::remove_all(_staging, ec);
+    interrupt::unregister_path(_staging);
   }
 }
 
 void OutputDir::commit()
 {
   MPI_Barrier(_comm);
-  int rank;
-  MPI_Comm_rank(_comm, &rank);
-  if (rank == 0)
-  {
-    fs::remove_all(_final);
-    if (_final.has_parent_path())
-      fs::create_directories(_final.parent_path());
-    fs::rename(_staging, _final);
-  }
+  on_root(_comm,
+          [&]
+          {
+            if (auto why = refusal_reason(_final, _rules)) // changed during the run?
+              throw InputError(*why + " (it changed during the run; the new result was discarded)");
+            write_marker(_staging, "complete");
+            const fs::path old = _final.parent_path() / (_final.filename().string() + ".old-"
+                                                         + std::to_string(getpid()));
+            const bool had_old = fs::exists(fs::symlink_status(_final));
+            if (had_old)
+            {
+              interrupt::register_path(old);
+              fs::rename(_final, old);
+            }
+            fs::rename(_staging, _final);
+            interrupt::unregister_path(_staging);
+            if (had_old)
+            {
+              fs::remove_all(old);
+              interrupt::unregister_path(old);
+            }
+          });
   _committed = true;
   MPI_Barrier(_comm);
+}
+
+std::string write_failure(const fs::path& file, const std::string& what)
+{
+  std::error_code ec;
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  const auto space = fs::space(dir, ec);
+  if (errno == ENOSPC || errno == EDQUOT || (!ec && space.available < (1u << 20)))
+    return fmt::format("cannot write '{}': no space left on device ({} bytes free)",
+                       file.string(), ec ? 0 : space.available);
+  return fmt::format("cannot write '{}': {}", file.string(), what);
 }
 
 void write_json(const fs::path& file, const nlohmann::json& j, MPI_Comm comm)
@@ -60,31 +134,72 @@ void write_json(const fs::path& file, const nlohmann::json& j, MPI_Comm comm)
 
 void write_text(const fs::path& file, const std::string& text, MPI_Comm comm)
 {
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  if (rank == 0)
+  on_root(comm,
+          [&]
+          {
+            errno = 0;
+            std::ofstream f(file);
+            f << text;
+            f.close();
+            if (!f)
+              throw std::runtime_error(write_failure(file, std::strerror(errno)));
+          });
+}
+
+void write_owned_json(const fs::path& file, nlohmann::json j, MPI_Comm comm)
+{
+  if (j.is_object())
+    j["written_by"] = "breastsim";
+  const fs::path tmp = file.parent_path() / ("." + file.filename().string() + ".partial-"
+                                             + std::to_string(getpid()));
+  on_root(comm, [&] { interrupt::register_path(tmp); });
+  try
   {
-    std::ofstream f(file);
-    f << text;
-    if (!f)
-      throw std::runtime_error("cannot write " + file.string());
+    write_json(tmp, j, comm);
+    on_root(comm,
+            [&]
+            {
+              fs::rename(tmp, file);
+              interrupt::unregister_path(tmp);
+            });
   }
+  catch (...)
+  {
+    std::error_code ec;
+    if (rank_of(comm) == 0)
+      fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+void refresh_marker(const fs::path& dir, MPI_Comm comm)
+{
+  on_root(comm, [&] { write_marker(dir, "complete"); });
 }
 
 void write_fields(Model& model, const fs::path& stem, bool xdmf, bool vtk)
 {
   auto u = model.displacement();
   auto mesh = model.mesh().mesh;
-  if (xdmf)
+  fs::path file = stem.string() + ".h5";
+  try
   {
-    dolfinx::io::XDMFFile f(mesh->comm(), stem.string() + ".xdmf", "w");
-    f.write_mesh(*mesh);
-    f.write_function(*u, 0.0);
+    if (xdmf)
+    {
+      dolfinx::io::XDMFFile f(mesh->comm(), stem.string() + ".xdmf", "w");
+      f.write_mesh(*mesh);
+      f.write_function(*u, 0.0);
+    }
+    file = stem.string() + ".pvd";
+    if (vtk)
+    {
+      dolfinx::io::VTKFile f(mesh->comm(), file.string(), "w");
+      f.write<T>({*u}, 0.0);
+    }
   }
-  if (vtk)
+  catch (const std::exception& e)
   {
-    dolfinx::io::VTKFile f(mesh->comm(), stem.string() + ".pvd", "w");
-    f.write<T>({*u}, 0.0);
+    throw std::runtime_error(write_failure(file, e.what()));
   }
 }
 } // namespace breastsim

@@ -1,8 +1,11 @@
 #pragma once
-// Result folders: everything is written into a staging folder that only
-// replaces the requested folder when the whole run succeeded, so a failed
-// run leaves no partial output.
+// Result folders: everything is written into a staging folder, a sibling of
+// the claimed target (output_target.hpp), that only replaces the target when
+// the whole run succeeded, so a failed or interrupted run leaves no partial
+// output. The old result is moved aside first and removed only once the new
+// one is in place.
 #include "model.hpp"
+#include "output_target.hpp"
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,27 +15,38 @@ namespace breastsim
 class OutputDir
 {
 public:
-  /// Collective. Creates `<final>.partial-<pid>` (rank 0).
-  OutputDir(std::filesystem::path final_dir, MPI_Comm comm);
+  /// Collective. Creates `<target>.partial-<pid>` beside the target (rank 0).
+  OutputDir(const OutputTarget& target, MPI_Comm comm);
   ~OutputDir(); ///< removes the staging folder unless committed
   OutputDir(const OutputDir&) = delete;
   OutputDir& operator=(const OutputDir&) = delete;
   /// Staging path to write into.
   std::filesystem::path path() const { return _staging; }
-  /// Collective. Replace the final folder by the staging folder.
+  /// Collective. Write the marker and replace the target by the staging
+  /// folder; throws InputError (nothing replaced) if the target changed
+  /// meanwhile into something breastsim may not replace.
   void commit();
   const std::filesystem::path& final_path() const { return _final; }
 
 private:
   std::filesystem::path _final, _staging;
+  OutputRules _rules;
   MPI_Comm _comm;
   bool _committed = false;
 };
 
-/// Write a JSON document (rank 0).
+/// Write a JSON document (rank 0). Failures name the file and, when the
+/// device is full, say so.
 void write_json(const std::filesystem::path& file, const nlohmann::json& j, MPI_Comm comm);
 /// Write a text file (rank 0).
 void write_text(const std::filesystem::path& file, const std::string& text, MPI_Comm comm);
+/// Write a single result file (rank 0) claimed by claim_output_file: through
+/// a temporary sibling renamed into place; objects get "written_by".
+void write_owned_json(const std::filesystem::path& file, nlohmann::json j, MPI_Comm comm);
+/// The message for a failed write of `file`: the device is full, or `what`.
+std::string write_failure(const std::filesystem::path& file, const std::string& what);
+/// Add the files below `dir` to its marker (after `view` wrote pictures).
+void refresh_marker(const std::filesystem::path& dir, MPI_Comm comm);
 /// Write the displacement of `model` on its mesh (XDMF; and VTK if `vtk`).
 void write_fields(Model& model, const std::filesystem::path& stem, bool xdmf, bool vtk);
 } // namespace breastsim

@@ -150,6 +150,7 @@ PostureResult solve_posture(Model& model, NewtonSolver& newton, const Observable
     r.path.linear_iterations += p.linear_iterations;
   }
   r.observables = probe.measure(model);
+  r.min_det_F = model.min_detF(); // > 0: no element of the deformed state is inverted
   r.seconds = since(t0);
   return r;
 }
@@ -164,6 +165,7 @@ nlohmann::json to_json(const PostureResult& r)
   j["newton_iterations"] = r.path.newton_iterations;
   j["linear_iterations"] = r.path.linear_iterations;
   j["wall_time_s"] = r.seconds;
+  j["min_det_F"] = r.min_det_F;
   j["coarse_start"] = r.coarse.used;
   j["coarse_newton_iterations"] = r.coarse.newton_iterations;
   j["coarse_level_newton_iterations"] = r.coarse.level_newton_iterations;
@@ -203,7 +205,7 @@ std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& p
   return out;
 }
 
-SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI_Comm comm)
+SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm)
 {
   SimulationResult res;
   check_picture_tools(comm); // fail before the solves, not after

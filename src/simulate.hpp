@@ -7,6 +7,7 @@
 #include "load_stepping.hpp"
 #include "mesh_quality.hpp"
 #include "observables.hpp"
+#include "output_target.hpp"
 #include "posture.hpp"
 #include <filesystem>
 #include <memory>
@@ -19,6 +20,7 @@ struct PostureResult
   Observables observables;
   LoadPathReport path;
   CoarseGuessReport coarse; ///< grid sequencing (src/coarse_start.hpp), if used
+  double min_det_F = 0;     ///< smallest det F of the deformed state (element nodes)
   double seconds = 0;
 };
 
@@ -63,7 +65,7 @@ std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& p
                                           CoarseStart* coarse = nullptr);
 
 /// The whole `simulate` job. Writes into `out` (replaced only on success).
-SimulationResult simulate(const Config& c, const std::filesystem::path& out, MPI_Comm comm);
+SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm);
 
 /// Short printable table of the observables of each posture.
 std::string observables_table(const std::vector<PostureResult>& r);

@@ -89,7 +89,7 @@ SutureReport close_sutures(Model& model, const Config& c)
   return rep;
 }
 
-SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Comm comm)
+SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
 {
   SurgeryResult r;
   const auto cap = cap_spec(c);

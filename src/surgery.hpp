@@ -44,7 +44,7 @@ SutureReport close_sutures(Model& model, const Config& c);
 double max_suture_gap(const Model& model);
 
 /// The whole surgery job; writes into `out` (replaced only on success).
-SurgeryResult surgery(const Config& c, const std::filesystem::path& out, MPI_Comm comm);
+SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm);
 std::string surgery_table(const SurgeryResult& r);
 nlohmann::json to_json(const SurgeryResult& r);
 } // namespace breastsim

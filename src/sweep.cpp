@@ -13,13 +13,35 @@ std::string sweep_key(const std::string& name)
       = {{"a", "incision.a_deg"}, {"s", "incision.s"}, {"h", "incision.h"}, {"d", "incision.d"}};
   if (auto it = keys.find(name); it != keys.end())
     return it->second;
-  key_info(name); // any other case key is allowed if it exists (throws otherwise)
+  const KeyInfo& k = key_info(name); // throws for an unknown key
+  if (k.type != KeyType::number && k.type != KeyType::integer && k.type != KeyType::boolean)
+    throw InputError(fmt::format("sweep --vary {}: key '{}' is a {}; only number, integer and "
+                                 "boolean keys can be varied (set it with --set instead)",
+                                 name, k.key, type_name(k.type)));
   return name;
+}
+
+std::vector<Value> sweep_values(const Config& base, const std::string& key, const std::string& list)
+{
+  std::vector<Value> values;
+  std::size_t begin = 0;
+  while (begin <= list.size())
+  {
+    const std::size_t comma = std::min(list.find(',', begin), list.size());
+    const std::string item = list.substr(begin, comma - begin);
+    if (item.empty())
+      throw InputError(fmt::format("sweep --vary {}={}: empty value in the list", key, list));
+    Config probe = base;
+    probe.set_text(key, item); // parsed and type-checked as the key's type
+    values.push_back(probe.values().at(key));
+    begin = comma + 1;
+  }
+  return values;
 }
 
 namespace
 {
-SweepRow run_one(Config c, const std::map<std::string, double>& values, const std::filesystem::path& dir,
+SweepRow run_one(Config c, const std::map<std::string, Value>& values, const std::filesystem::path& dir,
                  MPI_Comm comm)
 {
   SweepRow row;
@@ -30,11 +52,9 @@ SweepRow run_one(Config c, const std::map<std::string, double>& values, const st
     for (const auto& [k, v] : values)
       c.set(k, v);
     c.validate();
-    auto r = surgery(c, dir, comm);
+    auto r = surgery(c, OutputTarget::claim(dir.string(), {}, comm), comm);
     auto it = std::find_if(r.post.begin(), r.post.end(),
                            [](const PostureResult& p) { return p.posture.theta_deg == 0.0; });
-    if (it == r.post.end())
-      throw InputError("the sweep needs the standing posture in postures.names");
     const auto& o = it->observables;
     row.ok = true;
     row.resected_volume = r.resected_volume;
@@ -61,7 +81,10 @@ SweepRow run_one(Config c, const std::map<std::string, double>& values, const st
 
 nlohmann::json to_json(const SweepRow& r)
 {
-  nlohmann::json j = {{"parameters", r.parameters}, {"ok", r.ok}, {"wall_time_s", r.seconds}};
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& [k, v] : r.parameters)
+    std::visit([&](const auto& x) { params[k] = x; }, v);
+  nlohmann::json j = {{"parameters", params}, {"ok", r.ok}, {"wall_time_s", r.seconds}};
   if (!r.ok)
   {
     j["error"] = r.error;
@@ -75,26 +98,35 @@ nlohmann::json to_json(const SweepRow& r)
 }
 } // namespace
 
-std::vector<SweepRow> sweep(const Config& base,
-                            const std::vector<std::pair<std::string, std::vector<double>>>& grid,
-                            const std::filesystem::path& out, MPI_Comm comm)
+void check_sweep_request(const Config& base, const SweepGrid& grid)
 {
   if (grid.empty())
     throw InputError("sweep: give at least one --vary name=v1,v2,...");
   for (const auto& [k, vs] : grid)
     if (vs.empty())
       throw InputError(fmt::format("sweep: --vary {} has no values", k));
+  const auto postures = requested_postures(base);
+  if (std::none_of(postures.begin(), postures.end(), [](const Posture& p) { return p.theta_deg == 0.0; }))
+    throw InputError("key 'postures.names': the sweep reports the standing breast, so the postures "
+                     "must include standing (theta = 0)");
+}
+
+std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const OutputTarget& out,
+                            MPI_Comm comm)
+{
+  check_sweep_request(base, grid);
   OutputDir dir(out, comm);
   std::vector<SweepRow> rows;
   std::vector<std::size_t> idx(grid.size(), 0);
   while (true)
   {
-    std::map<std::string, double> values;
+    std::map<std::string, Value> values;
     std::string label;
     for (std::size_t i = 0; i < grid.size(); ++i)
     {
       values[grid[i].first] = grid[i].second[idx[i]];
-      label += fmt::format("{}{}={:g}", label.empty() ? "" : "_", grid[i].first, grid[i].second[idx[i]]);
+      label += fmt::format("{}{}={}", label.empty() ? "" : "_", grid[i].first,
+                           plain_text(grid[i].second[idx[i]]));
     }
     log::info("sweep: {}", label);
     rows.push_back(run_one(base, values, dir.path() / label, comm));
@@ -116,7 +148,7 @@ std::vector<SweepRow> sweep(const Config& base,
   for (const auto& r : rows)
   {
     for (const auto& [k, v] : r.parameters)
-      csv += fmt::format("{:g},", v);
+      csv += plain_text(v) + ",";
     csv += fmt::format("{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.5f},{},{:.2f}\n", r.ok ? 1 : 0,
                        1e6 * r.resected_volume, 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.projection,
                        1e3 * r.z_min, r.lower_pole_ratio, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
@@ -141,7 +173,7 @@ std::string sweep_table(const std::vector<SweepRow>& rows)
   for (const auto& r : rows)
   {
     for (const auto& [k, v] : r.parameters)
-      s += fmt::format("{:>16g} ", v);
+      s += fmt::format("{:>16} ", plain_text(v));
     if (!r.ok)
     {
       s += "rejected: " + r.error + "\n";

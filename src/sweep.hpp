@@ -8,7 +8,7 @@ namespace breastsim
 {
 struct SweepRow
 {
-  std::map<std::string, double> parameters; ///< case key -> value
+  std::map<std::string, Value> parameters; ///< case key -> value (number, integer or boolean)
   bool ok = false;
   std::string error;                        ///< why the combination was rejected
   double resected_volume = 0;               ///< full breast [m^3]
@@ -23,13 +23,21 @@ struct SweepRow
   double seconds = 0;
 };
 
-/// Short names accepted by --vary (a, s, h, d) -> case keys.
+/// Short names accepted by --vary (a, s, h, d) -> case keys; any other key
+/// must be a number, integer or boolean key (InputError naming it otherwise).
 std::string sweep_key(const std::string& name);
+/// The values of `--vary key=v1,v2,...`, each parsed and range-checked as
+/// the key's own type against `base`.
+std::vector<Value> sweep_values(const Config& base, const std::string& key, const std::string& list);
+using SweepGrid = std::vector<std::pair<std::string, std::vector<Value>>>;
 
 /// Run the surgery for every combination of `grid` (case key -> values),
-/// postures as in the case (standing must be among them). Each run writes
-/// into <out>/<label>/; the table into <out>/sweep.json and sweep.csv.
-std::vector<SweepRow> sweep(const Config& base, const std::vector<std::pair<std::string, std::vector<double>>>& grid,
-                            const std::filesystem::path& out, MPI_Comm comm);
+/// postures as in the case (standing must be among them: checked before any
+/// solve). Each run writes into <out>/<label>/; the table into
+/// <out>/sweep.json and sweep.csv.
+/// InputError unless the grid has values and the postures include standing.
+void check_sweep_request(const Config& base, const SweepGrid& grid);
+std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const OutputTarget& out,
+                            MPI_Comm comm);
 std::string sweep_table(const std::vector<SweepRow>& rows);
 } // namespace breastsim

@@ -1,41 +1,23 @@
 #include "viewer.hpp"
 #include "errors.hpp"
+#include "interrupt.hpp"
 #include "log.hpp"
 #include <cstdlib>
-#include <spawn.h>
 #include <stdexcept>
-#include <sys/wait.h>
 #include <vector>
 
-extern char** environ;
 
 namespace breastsim
 {
 namespace
 {
-/// Run `argv` (no shell) and return its exit code (-1 if it could not run).
-int run(const std::vector<std::string>& argv)
-{
-  std::vector<char*> args;
-  for (const auto& a : argv)
-    args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid;
-  if (posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0)
-    return -1;
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status))
-    return -1;
-  return WEXITSTATUS(status);
-}
-
 /// Run on rank 0, share the exit code with every rank.
 int run_on_root(const std::vector<std::string>& argv, MPI_Comm comm)
 {
   int rank, code = 0;
   MPI_Comm_rank(comm, &rank);
   if (rank == 0)
-    code = run(argv);
+    code = interrupt::run_child(argv);
   MPI_Bcast(&code, 1, MPI_INT, 0, comm);
   return code;
 }

@@ -126,7 +126,8 @@ TEST(CalibrateRecovery, SyntheticDataRecoverMuAndCWithinTheirIntervals)
 
   // The calibrated case is an ordinary case file with the fitted values.
   const auto out = temp_path("breastsim_test_calibration");
-  write_calibration(r, out, MPI_COMM_WORLD, {false}); // pictures: tests/cli/calibrate.sh
+  write_calibration(r, OutputTarget::claim(out.string(), {}, MPI_COMM_WORLD), MPI_COMM_WORLD,
+                    {false}); // pictures: tests/cli/calibrate.sh
   const Config back = Config::from_file(out / "calibrated.toml");
   EXPECT_NEAR(back.number("tissue.mu"), mu["fitted"].get<double>(), 1e-9 * mu_true);
   EXPECT_NEAR(back.number("base.c"), c["fitted"].get<double>(), 1e-9 * c_true);

@@ -41,8 +41,9 @@ Command add_calibrate_command(CLI::App& root)
 {
   struct Options
   {
-    std::string measurements, case_file, fit = "mu,c", algorithm = "bobyqa", out, checkpoint,
+    std::string measurements, case_file, fit = "mu,c", algorithm = "bobyqa", checkpoint,
                                           petsc_options, size = "800x600";
+    OutputOption out;
     std::vector<std::string> sets;
     bool resume = false, remesh = false;
     int max_evals = 200;
@@ -68,8 +69,8 @@ Command add_calibrate_command(CLI::App& root)
   app->add_option("--max-evals", o->max_evals, "objective evaluations allowed (in total with "
                                                "--resume)")
       ->capture_default_str();
-  app->add_option("--out", o->out, "output folder (default results/<case.name>_calibrated); "
-                                   "replaced on success");
+  add_output_option(app, o->out, "output folder (default results/<case.name>_calibrated); "
+                                 "replaced on success");
   app->add_option("--checkpoint", o->checkpoint, "checkpoint file (default <out>.checkpoint.json)");
   app->add_flag("--resume", o->resume, "continue from the checkpoint's best point");
   app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
@@ -111,13 +112,15 @@ Command add_calibrate_command(CLI::App& root)
                                              o->size));
             }
             check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
-            const std::string out
-                = o->out.empty() ? "results/" + c.text("case.name") + "_calibrated" : o->out;
+            const std::string default_out = "results/" + c.text("case.name") + "_calibrated";
+            const std::vector<std::string> inputs = {o->measurements, o->case_file};
+            // Every input is read and checked before the output folder is claimed.
             const auto doc = calibration::read_json_file(o->measurements, "measurements file");
             if (calibration::is_recording(doc))
             {
               // 3D surface points: the point-to-skin fit of `diagnose`, without discovery.
               const auto rec = calibration::parse_recording(doc, o->measurements);
+              const auto out = claim_output(o->out, default_out, inputs);
               calibration::DiagnoseOptions d;
               d.fit = o->fit;
               d.discover = false;
@@ -127,7 +130,7 @@ Command add_calibrate_command(CLI::App& root)
               write_text(dir.path() / "calibrated.toml", res.final_fit.config.to_toml(), MPI_COMM_WORLD);
               dir.commit();
               if (log::is_root())
-                std::cout << calibration::report_text(res, rec) << "results written to " << out
+                std::cout << calibration::report_text(res, rec) << "results written to " << out.path().string()
                           << "/ (calibrated.toml, diagnosis.json, residual maps)\n";
               return 0;
             }
@@ -137,7 +140,12 @@ Command add_calibrate_command(CLI::App& root)
             calibration::CalibrateOptions co;
             co.optimizer.algorithm = o->algorithm;
             co.optimizer.max_evals = o->max_evals;
-            co.checkpoint = o->checkpoint.empty() ? out + ".checkpoint.json" : o->checkpoint;
+            const std::string out_name = o->out.out.empty() ? default_out : o->out.out;
+            co.checkpoint = claim_file(o->checkpoint.empty()
+                                           ? normalise_path(out_name).string() + ".checkpoint.json"
+                                           : o->checkpoint,
+                                       inputs, "the checkpoint");
+            const auto out = claim_output(o->out, default_out, inputs);
             co.resume = o->resume;
             co.measurements_source = o->measurements;
             co.morph = !o->remesh;
@@ -149,7 +157,7 @@ Command add_calibrate_command(CLI::App& root)
             if (log::is_root())
             {
               std::cout << calibration::calibration_table(res.report);
-              std::cout << "results written to " << out
+              std::cout << "results written to " << out.path().string()
                         << "/ (calibrated.toml for `breastsim simulate`, report.json, "
                            "misfit_history.png, measurements.png, view_<posture>.png)\n";
             }
@@ -189,8 +197,9 @@ Command add_measure_command(CLI::App& root)
             so.noise = o->noise;
             so.sigma = o->sigma > 0 ? o->sigma : (o->noise > 0 ? o->noise : 5e-4);
             so.seed = o->seed;
+            const auto file = claim_file(o->out, {o->case_file}, "the measurement file");
             const auto doc = calibration::synthetic_measurements(c, so, MPI_COMM_WORLD);
-            write_json(o->out, doc, MPI_COMM_WORLD);
+            write_owned_json(file, doc, MPI_COMM_WORLD);
             if (log::is_root())
               std::cout << "measurements written to " << o->out << "\n";
             return 0;

@@ -36,9 +36,10 @@ Command add_converge_command(CLI::App& root)
 {
   struct Options
   {
-    std::string case_file, out, orders = "1", quantities = "nipple_z,projection,energy";
+    std::string case_file, orders = "1", quantities = "nipple_z,projection,energy";
     std::string mms_meshes = "nested", stage = "preop", refine = "gmsh";
     std::vector<std::string> sets;
+    OutputOption out;
     int levels = 3;
     bool mms = false;
   };
@@ -54,8 +55,8 @@ Command add_converge_command(CLI::App& root)
                   "quantities, comma separated: nipple_x, nipple_y, nipple_z, projection, z_min, "
                   "z_max, base_perimeter, volume, energy");
   app->add_option("--set", o->sets, "override a case key (repeatable)")->allow_extra_args(false);
-  app->add_option("--out", o->out,
-                  "output folder (default results/<case.name>-convergence); replaced on success");
+  add_output_option(app, o->out,
+                    "output folder (default results/<case.name>-convergence); replaced on success");
   app->add_flag("--mms", o->mms,
                 "manufactured-solution problem instead of the case's posture (the case's "
                 "material, geometry and mesh_size; gravity off)");
@@ -89,8 +90,8 @@ Command add_converge_command(CLI::App& root)
               if (orders.back() != 1 && orders.back() != 2)
                 throw InputError("--order: element order must be 1 or 2, got " + s);
             }
-            const std::string out =
-                o->out.empty() ? "results/" + c.text("case.name") + "-convergence" : o->out;
+            const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-convergence",
+                                          {o->case_file});
             nlohmann::json j;
             j["case"] = c.text("case.name");
             j["levels"] = o->levels;
@@ -130,7 +131,7 @@ Command add_converge_command(CLI::App& root)
             if (log::is_root())
             {
               std::cout << report;
-              std::cout << "results written to " << out << "/ (convergence.json, convergence.txt"
+              std::cout << "results written to " << out.path().string() << "/ (convergence.json, convergence.txt"
                         << (png ? ", convergence.png" : "; no plot: python3/matplotlib failed")
                         << ")\n";
             }

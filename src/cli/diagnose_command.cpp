@@ -19,7 +19,8 @@ Command add_diagnose_command(CLI::App& root)
 {
   struct Options
   {
-    std::string recording, case_file, out = "results/diagnosis", candidates;
+    std::string recording, case_file, candidates;
+    OutputOption out;
     std::vector<std::string> sets;
     calibration::DiagnoseOptions d;
   };
@@ -32,7 +33,7 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--case", o->case_file, "the current model (TOML): terms on, known parameters, "
                                           "mesh (default: every default key)");
   app->add_option("--set", o->sets, "override a case key (repeatable)");
-  app->add_option("--out", o->out, "output folder; replaced on success")->capture_default_str();
+  add_output_option(app, o->out, "output folder (default results/diagnosis); replaced on success");
   app->add_option("--fit", o->d.fit, "current-model parameters refitted (mu, lambda, mu_s, lambda_s, "
                                      "c, rho)")->capture_default_str();
   app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library "
@@ -53,12 +54,13 @@ Command add_diagnose_command(CLI::App& root)
               if (!s.empty())
                 o->d.candidates.push_back(s);
             check_picture_tools(MPI_COMM_WORLD); // fail before the solves, not after
-            OutputDir dir(o->out, MPI_COMM_WORLD);
+            const auto out = claim_output(o->out, "results/diagnosis", {o->recording, o->case_file});
+            OutputDir dir(out, MPI_COMM_WORLD);
             const auto d = calibration::diagnose(rec, c, o->d, MPI_COMM_WORLD);
             calibration::write_diagnosis(dir.path(), d, rec, MPI_COMM_WORLD);
             dir.commit();
             if (log::is_root())
-              std::cout << calibration::report_text(d, rec) << "results written to " << o->out
+              std::cout << calibration::report_text(d, rec) << "results written to " << out.path().string()
                         << "/ (diagnosis.json, diagnosis.txt, residual maps, case.diagnosed.toml)\n";
             return 0;
           }};

@@ -1,15 +1,38 @@
 // breastsim command-line interface: a thin layer over the library. Each
 // subcommand is in its own file (see command.hpp) and listed once below.
 #include "../errors.hpp"
+#include "../interrupt.hpp"
 #include "../log.hpp"
+#include "../output_target.hpp"
 #include "command.hpp"
 #include <dolfinx/common/log.h>
 #include <iostream>
 #include <petscsys.h>
 
+namespace
+{
+/// The first argument that is not an option, if it names no subcommand.
+std::string unknown_subcommand(int argc, char** argv, const CLI::App& app)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (!a.empty() && a[0] == '-')
+      continue;
+    for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+      if (sub->get_name() == a)
+        return "";
+    return a;
+  }
+  return "";
+}
+} // namespace
+
 int main(int argc, char** argv)
 {
   using namespace breastsim;
+  interrupt::install(); // first: the signal mask is inherited by every later thread
+  set_command_line(argc, argv);
   CLI::App app{"breastsim: simulation of breast reduction surgery (neo-Hookean tissue, skin "
                "membrane, Chassaignac springs, gravity in any posture)"};
   app.require_subcommand(1);
@@ -29,13 +52,22 @@ int main(int argc, char** argv)
       cli::add_diagnose_command(app),
   };
 
+  if (const std::string sub = unknown_subcommand(argc, argv, app); !sub.empty())
+  {
+    std::string names;
+    for (const auto& c : commands)
+      names += (names.empty() ? "" : ", ") + c.app->get_name();
+    std::cerr << "breastsim: unknown subcommand '" << sub << "' (one of: " << names << ")\n";
+    return 2;
+  }
   try
   {
     app.parse(argc, argv);
   }
   catch (const CLI::ParseError& e)
   {
-    return app.exit(e);
+    const int code = app.exit(e); // prints help, or the error with a usage hint
+    return code == 0 ? 0 : 2;     // every command-line error is bad input
   }
 
   PetscInitializeNoArguments();

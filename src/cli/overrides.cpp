@@ -1,6 +1,7 @@
 #include "overrides.hpp"
 #include "../errors.hpp"
-#include <petscsys.h>
+#include <fmt/format.h>
+#include <petscksp.h>
 
 namespace breastsim::cli
 {
@@ -18,9 +19,92 @@ Config load_case(const std::string& file, const std::vector<std::string>& sets)
   return c;
 }
 
+namespace
+{
+/// PETSc error handler that keeps the first message (the one naming the option).
+PetscErrorCode keep_message(MPI_Comm, int, const char*, const char*, PetscErrorCode n, PetscErrorType,
+                            const char* mess, void* ctx)
+{
+  auto* s = static_cast<std::string*>(ctx);
+  if (s->empty() && mess)
+    *s = mess;
+  return n;
+}
+
+/// Set a KSP up from the options on a 2x2 identity: unknown types and bad
+/// values fail here, before any solve.
+PetscErrorCode probe_solver()
+{
+  Mat A;
+  KSP ksp;
+  PetscCall(MatCreateAIJ(PETSC_COMM_SELF, 2, 2, 2, 2, 1, nullptr, 0, nullptr, &A));
+  for (PetscInt i = 0; i < 2; ++i)
+    PetscCall(MatSetValue(A, i, i, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp));
+  PetscCall(KSPSetOperators(ksp, A, A));
+  const PetscErrorCode rc = [&]() -> PetscErrorCode
+  {
+    PetscCall(KSPSetFromOptions(ksp));
+    PetscCall(KSPSetUp(ksp));
+    return 0;
+  }();
+  KSPDestroy(&ksp);
+  MatDestroy(&A);
+  return rc;
+}
+} // namespace
+
 void insert_petsc_options(const Config& c, const std::string& extra)
 {
   const std::string opts = c.text("solver.petsc_options") + " " + extra;
-  PetscOptionsInsertString(nullptr, opts.c_str());
+  std::string message;
+  PetscPushErrorHandler(keep_message, &message);
+  PetscErrorCode rc = PetscOptionsInsertString(nullptr, opts.c_str());
+  if (rc == 0)
+    rc = probe_solver();
+  PetscPopErrorHandler();
+  if (rc != 0)
+    throw InputError(fmt::format("PETSc options \"{}\" (solver.petsc_options and --petsc-options) "
+                                 "are refused by PETSc: {}",
+                                 opts,
+                                 message.empty() ? "error " + std::to_string(rc) : message));
+}
+
+void add_output_option(CLI::App* app, OutputOption& o, const std::string& help)
+{
+  o.option = app->add_option("--out", o.out, help + "; only a folder breastsim wrote (it holds a "
+                                        ".breastsim-result marker) is replaced");
+  app->add_flag("--force", o.force, "allow --out to be an existing empty folder that breastsim "
+                                    "did not write");
+}
+
+namespace
+{
+OutputRules rules_for(bool force, const std::vector<std::string>& inputs)
+{
+  OutputRules r;
+  r.force = force;
+  for (const auto& f : inputs)
+    if (!f.empty())
+      r.inputs.emplace_back(f);
+  return r;
+}
+} // namespace
+
+OutputTarget claim_output(const OutputOption& o, const std::string& default_out,
+                          const std::vector<std::string>& inputs)
+{
+  if (o.option && o.option->count() > 0 && o.out.empty())
+    throw InputError("--out is empty: give a folder name");
+  return OutputTarget::claim(o.out.empty() ? default_out : o.out, rules_for(o.force, inputs),
+                             MPI_COMM_WORLD);
+}
+
+std::filesystem::path claim_file(const std::string& file, const std::vector<std::string>& inputs,
+                                 const std::string& what)
+{
+  return claim_output_file(file, rules_for(false, inputs), what);
 }
 } // namespace breastsim::cli

@@ -42,8 +42,9 @@ Command add_record_command(CLI::App& root)
   return {app, [o]()
           {
             const Config c = load_case(o->case_file, o->sets);
+            const auto file = claim_file(o->out, {o->case_file}, "the recording");
             const auto rec = calibration::synthetic_recording(c, o->r, MPI_COMM_WORLD);
-            write_json(o->out, calibration::to_json(rec), MPI_COMM_WORLD);
+            write_owned_json(file, calibration::to_json(rec), MPI_COMM_WORLD);
             if (log::is_root())
               std::cout << "recording written to " << o->out << " (hidden: "
                         << (o->r.hidden.empty() ? "none" : o->r.hidden) << ")\n";

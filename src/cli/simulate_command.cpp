@@ -14,7 +14,8 @@ Command add_simulate_command(CLI::App& root)
 {
   struct Options
   {
-    std::string case_file, out, petsc_options;
+    std::string case_file, petsc_options;
+    OutputOption out;
     std::vector<std::string> sets;
   };
   auto o = std::make_shared<Options>();
@@ -22,19 +23,19 @@ Command add_simulate_command(CLI::App& root)
   app->add_option("case", o->case_file, "case file (TOML, SI units; see `breastsim keys`)")->required();
   app->add_option("--set", o->sets, "override a case key, e.g. --set tissue.mu=800 (repeatable)")
       ->allow_extra_args(false);
-  app->add_option("--out", o->out, "output folder (default results/<case.name>); replaced on success");
+  add_output_option(app, o->out, "output folder (default results/<case.name>); replaced on success");
   app->add_option("--petsc-options", o->petsc_options,
                   "PETSc options passed through, e.g. \"-ksp_type gmres -pc_type gamg\"");
   return {app, [o]()
           {
             Config c = load_case(o->case_file, o->sets);
             insert_petsc_options(c, o->petsc_options);
-            const std::string out = o->out.empty() ? "results/" + c.text("case.name") : o->out;
+            const auto out = claim_output(o->out, "results/" + c.text("case.name"), {o->case_file});
             auto res = simulate(c, out, MPI_COMM_WORLD);
             if (log::is_root())
             {
               std::cout << observables_table(res.postures);
-              std::cout << "results written to " << out
+              std::cout << "results written to " << out.path().string()
                         << "/ (summary.json, case.resolved.toml, XDMF)\n";
             }
             return 0;

@@ -13,7 +13,8 @@ Command add_surgery_command(CLI::App& root)
 {
   struct Options
   {
-    std::string case_file, out, petsc_options;
+    std::string case_file, petsc_options;
+    OutputOption out;
     std::vector<std::string> sets;
   };
   auto o = std::make_shared<Options>();
@@ -23,16 +24,17 @@ Command add_surgery_command(CLI::App& root)
       ->required();
   app->add_option("--set", o->sets, "override a case key, e.g. --set incision.a_deg=35 (repeatable)")
       ->allow_extra_args(false);
-  app->add_option("--out", o->out, "output folder (default results/<case.name>-surgery); replaced on success");
+  add_output_option(app, o->out, "output folder (default results/<case.name>-surgery); replaced on success");
   app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
   return {app, [o]()
           {
             Config c = load_case(o->case_file, o->sets);
             insert_petsc_options(c, o->petsc_options);
-            const std::string out = o->out.empty() ? "results/" + c.text("case.name") + "-surgery" : o->out;
+            const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-surgery",
+                                          {o->case_file});
             auto r = surgery(c, out, MPI_COMM_WORLD);
             if (log::is_root())
-              std::cout << surgery_table(r) << "results written to " << out << "/\n";
+              std::cout << surgery_table(r) << "results written to " << out.path().string() << "/\n";
             return 0;
           }};
 }

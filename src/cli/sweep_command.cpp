@@ -15,7 +15,8 @@ Command add_sweep_command(CLI::App& root)
 {
   struct Options
   {
-    std::string case_file, out, petsc_options;
+    std::string case_file, petsc_options;
+    OutputOption out;
     std::vector<std::string> sets, vary;
   };
   auto o = std::make_shared<Options>();
@@ -26,34 +27,28 @@ Command add_sweep_command(CLI::App& root)
       ->required()
       ->allow_extra_args(false);
   app->add_option("--set", o->sets, "override a case key (repeatable)")->allow_extra_args(false);
-  app->add_option("--out", o->out, "output folder (default results/<case.name>-sweep)");
+  add_output_option(app, o->out, "output folder (default results/<case.name>-sweep)");
   app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
   return {app, [o]()
           {
             Config c = load_case(o->case_file, o->sets);
             insert_petsc_options(c, o->petsc_options);
-            std::vector<std::pair<std::string, std::vector<double>>> grid;
+            SweepGrid grid;
             for (const auto& v : o->vary)
             {
               const auto eq = v.find('=');
               if (eq == std::string::npos || eq == 0)
                 throw InputError("--vary expects NAME=v1,v2,..., got '" + v + "'");
               const std::string key = sweep_key(v.substr(0, eq));
-              std::vector<double> values;
-              std::stringstream ss(v.substr(eq + 1));
-              std::string item;
-              while (std::getline(ss, item, ','))
-              {
-                Config probe = c;
-                probe.set_text(key, item); // parses and type-checks the value
-                values.push_back(probe.number(key));
-              }
-              grid.emplace_back(key, values);
+              grid.emplace_back(key, sweep_values(c, key, v.substr(eq + 1)));
             }
-            const std::string out = o->out.empty() ? "results/" + c.text("case.name") + "-sweep" : o->out;
+            check_sweep_request(c, grid);
+            const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-sweep",
+                                          {o->case_file});
             auto rows = sweep(c, grid, out, MPI_COMM_WORLD);
             if (log::is_root())
-              std::cout << sweep_table(rows) << "results written to " << out << "/ (sweep.json, sweep.csv)\n";
+              std::cout << sweep_table(rows) << "results written to " << out.path().string()
+                        << "/ (sweep.json, sweep.csv)\n";
             return 0;
           }};
 }

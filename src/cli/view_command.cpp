@@ -1,8 +1,11 @@
 // `breastsim view RESULT_DIR`: (re)render the pictures of a result folder and
 // write its self-contained 3D page index.html.
+#include "../errors.hpp"
 #include "../log.hpp"
+#include "../output.hpp"
 #include "../viewer.hpp"
 #include "command.hpp"
+#include <fmt/format.h>
 #include <iostream>
 #include <memory>
 
@@ -28,9 +31,18 @@ Command add_view_command(CLI::App& root)
       ->capture_default_str();
   return {app, [o]()
           {
+            // Pictures are written only into a finished result folder of breastsim's own.
+            const auto dir = normalise_path(o->result_dir, "result_dir");
+            if (!std::filesystem::exists(dir / result_marker))
+              throw InputError(fmt::format("refusing to write pictures into '{}': it has no {} "
+                                           "marker, so breastsim did not write it",
+                                           dir.string(), result_marker));
+            if (auto why = refusal_reason(dir, OutputRules{}))
+              throw InputError(*why);
             check_picture_tools(MPI_COMM_WORLD);
             render_pictures(o->result_dir, {o->compare, o->size}, MPI_COMM_WORLD);
             write_view_page(o->result_dir, o->compare, MPI_COMM_WORLD);
+            refresh_marker(dir, MPI_COMM_WORLD); // the marker lists the pictures too
             if (log::is_root())
             {
               const auto page = std::filesystem::absolute(o->result_dir) / "index.html";

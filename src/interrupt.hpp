@@ -1,0 +1,25 @@
+#pragma once
+// SIGINT and SIGTERM: the run stops, its staging folders and lock files are
+// removed, its child processes (picture scripts) are terminated, and the
+// process exits with 128 + signal (130, 143). A dedicated thread receives the
+// signals (they are blocked in every other thread), so the clean-up runs
+// outside a signal handler.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace breastsim::interrupt
+{
+/// Block SIGINT/SIGTERM in this (the main) thread and start the thread that
+/// handles them. Call first in main(), before any thread is created.
+void install();
+
+/// Remove `p` (a folder: recursively) when the run is interrupted.
+void register_path(const std::filesystem::path& p);
+void unregister_path(const std::filesystem::path& p);
+
+/// Run `argv` (no shell) as a child process with the default signal mask and
+/// wait for it; an interrupt terminates it. Returns its exit code, or -1 if it
+/// could not be started or did not exit normally.
+int run_child(const std::vector<std::string>& argv);
+} // namespace breastsim::interrupt

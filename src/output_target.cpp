@@ -1,0 +1,349 @@
+#include "output_target.hpp"
+#include "errors.hpp"
+#include "interrupt.hpp"
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <fstream>
+#include <set>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace breastsim
+{
+namespace fs = std::filesystem;
+
+namespace
+{
+constexpr const char* marker_format = "breastsim result folder";
+std::string g_command_line = "breastsim";
+
+/// `a` is `b` or one of its ancestors (both normalised).
+bool is_ancestor_or_self(const fs::path& a, const fs::path& b)
+{
+  if (a.empty() || b.empty())
+    return false;
+  auto ia = a.begin(), ib = b.begin();
+  for (; ia != a.end(); ++ia, ++ib)
+    if (ib == b.end() || *ia != *ib)
+      return false;
+  return true;
+}
+
+std::string host_name()
+{
+  char buf[256] = {};
+  gethostname(buf, sizeof buf - 1);
+  return buf;
+}
+
+bool process_alive(long pid)
+{
+  return pid > 0 && (kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+}
+
+/// The first entry below `dir` that the marker does not list, if any.
+std::optional<fs::path> foreign_entry(const fs::path& dir, const nlohmann::json& marker)
+{
+  std::set<std::string> listed, parents;
+  for (const auto& f : marker.value("files", nlohmann::json::array()))
+  {
+    if (!f.is_string())
+      continue;
+    const fs::path p = f.get<std::string>();
+    listed.insert(p.lexically_normal().string());
+    for (fs::path q = p.parent_path(); !q.empty(); q = q.parent_path())
+      parents.insert(q.string());
+  }
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::end(it); it.increment(ec))
+  {
+    const std::string rel = it->path().lexically_relative(dir).string();
+    if (rel == result_marker)
+      continue;
+    const bool dir_entry = it->is_directory() && !it->is_symlink();
+    if (dir_entry ? parents.count(rel) == 0 && listed.count(rel) == 0 : listed.count(rel) == 0)
+      return it->path();
+  }
+  if (ec)
+    return dir;
+  return std::nullopt;
+}
+
+std::string refuse(const fs::path& p, const std::string& why)
+{
+  return fmt::format("refusing to write the result into '{}': {}", p.string(), why);
+}
+} // namespace
+
+ProtectedPaths ProtectedPaths::of_this_process()
+{
+  ProtectedPaths p;
+  p.root = "/";
+  if (const char* h = std::getenv("HOME"); h && *h)
+    p.home = fs::weakly_canonical(fs::absolute(h));
+  std::error_code ec;
+  p.cwd = fs::current_path(ec);
+  if (!ec)
+    p.cwd = fs::weakly_canonical(p.cwd);
+  return p;
+}
+
+fs::path normalise_path(const std::string& given, const std::string& what)
+{
+  if (given.empty())
+    throw InputError(fmt::format("{} is empty: give a folder name", what));
+  if (given.find('\0') != std::string::npos)
+    throw InputError(fmt::format("{} contains a NUL character", what));
+  fs::path p = fs::weakly_canonical(fs::absolute(given)); // resolves symlinks, "..", "."
+  while (!p.has_filename() && p != p.root_path())          // trailing separator
+    p = p.parent_path();
+  return p;
+}
+
+std::optional<std::string> refusal_reason(const fs::path& target, const OutputRules& rules)
+{
+  const ProtectedPaths& pp = rules.protect;
+  if (target == pp.root || target == target.root_path())
+    return refuse(target, "it is the file-system root");
+  if (is_ancestor_or_self(target, pp.home))
+    return refuse(target, pp.home == target ? "it is your home folder ($HOME)"
+                                            : "it holds your home folder ($HOME)");
+  if (is_ancestor_or_self(target, pp.cwd))
+    return refuse(target, pp.cwd == target ? "it is the working directory"
+                                           : "it holds the working directory");
+  for (const auto& in : rules.inputs)
+  {
+    std::error_code ec;
+    const fs::path f = fs::weakly_canonical(fs::absolute(in), ec);
+    if (!ec && (f == target || is_ancestor_or_self(target, f.parent_path())))
+      return refuse(target, fmt::format("it holds the input file '{}'", in.string()));
+  }
+  std::error_code ec;
+  const auto st = fs::symlink_status(target, ec);
+  if (ec || !fs::exists(st))
+    return std::nullopt; // a new folder
+  if (!fs::is_directory(st))
+    return refuse(target, "it is a file, not a folder written by breastsim");
+  const bool marked = fs::is_regular_file(fs::symlink_status(target / result_marker, ec));
+  if (!marked)
+  {
+    if (fs::is_empty(target, ec) && !ec)
+      return rules.force ? std::nullopt
+                         : std::optional<std::string>(refuse(
+                             target, "the folder exists (empty) and was not written by breastsim; "
+                                     "pass --force to use it"));
+    return refuse(target, fmt::format("the folder is not empty and has no {} marker, so "
+                                      "breastsim did not write it (choose a new folder)",
+                                      result_marker));
+  }
+  nlohmann::json m;
+  try
+  {
+    m = read_marker(target);
+  }
+  catch (const std::exception& e)
+  {
+    return refuse(target, fmt::format("its {} cannot be read: {}", result_marker, e.what()));
+  }
+  if (m.value("state", "") != "complete")
+    return refuse(target, "its marker says it is not a finished breastsim result");
+  if (auto f = foreign_entry(target, m))
+    return refuse(target, fmt::format("it holds '{}', which breastsim did not write (move it "
+                                      "away or choose another folder)",
+                                      f->lexically_relative(target).string()));
+  return std::nullopt;
+}
+
+void set_command_line(int argc, char** argv)
+{
+  std::string s;
+  for (int i = 0; i < argc; ++i)
+    s += (i ? " " : "") + std::string(argv[i]);
+  g_command_line = s;
+}
+
+nlohmann::json read_marker(const fs::path& dir)
+{
+  std::ifstream in(dir / result_marker);
+  const auto m = nlohmann::json::parse(in);
+  if (!m.is_object() || m.value("format", "") != marker_format)
+    throw std::runtime_error(fmt::format("not a '{}' marker", marker_format));
+  return m;
+}
+
+void write_marker(const fs::path& dir, const std::string& state)
+{
+  nlohmann::json files = nlohmann::json::array();
+  if (state == "complete")
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+      if (!e.is_directory() && e.path().filename() != result_marker)
+        files.push_back(e.path().lexically_relative(dir).string());
+  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char when[32];
+  std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  const nlohmann::json m = {{"format", marker_format}, {"version", 1},
+                            {"command", g_command_line}, {"created", when},
+                            {"host", host_name()},      {"pid", static_cast<long>(getpid())},
+                            {"state", state},          {"files", files}};
+  std::ofstream out(dir / result_marker);
+  out << m.dump(2) << "\n";
+  if (!out)
+    throw std::runtime_error(fmt::format("cannot write {}", (dir / result_marker).string()));
+}
+
+fs::path staging_path(const fs::path& target, long pid)
+{
+  return target.parent_path() / (target.filename().string() + ".partial-" + std::to_string(pid));
+}
+
+int remove_stale_staging(const fs::path& target)
+{
+  const std::string prefix = target.filename().string() + ".partial-";
+  std::error_code ec;
+  int removed = 0;
+  for (const auto& e : fs::directory_iterator(target.parent_path(), ec))
+  {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !e.is_directory() || e.is_symlink())
+      continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    try
+    {
+      const auto m = read_marker(e.path());
+      const long pid = m.value("pid", 0L);
+      if (m.value("state", "") != "staging" || m.value("host", "") != host_name()
+          || std::to_string(pid) != digits || process_alive(pid))
+        continue;
+    }
+    catch (const std::exception&)
+    {
+      continue; // not ours: left alone
+    }
+    std::error_code rm;
+    fs::remove_all(e.path(), rm);
+    removed += rm ? 0 : 1;
+  }
+  return removed;
+}
+
+OutputTarget OutputTarget::claim(const std::string& given, const OutputRules& rules, MPI_Comm comm)
+{
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  OutputTarget t({}, rules);
+  if (rank == 0)
+  {
+    try
+    {
+      t._path = normalise_path(given);
+      if (auto why = refusal_reason(t._path, rules))
+        throw InputError(*why);
+      fs::create_directories(t._path.parent_path());
+      t._lock_file = t._path.parent_path() / ("." + t._path.filename().string() + ".breastsim-lock");
+      for (int attempt = 0; attempt < 5 && t._lock_fd < 0; ++attempt)
+      {
+        const int fd = ::open(t._lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (fd < 0)
+          throw InputError(fmt::format("cannot create the lock file '{}': {}", t._lock_file.string(),
+                                       std::strerror(errno)));
+        if (flock(fd, LOCK_EX | LOCK_NB) != 0)
+        {
+          ::close(fd);
+          throw InputError(fmt::format("refusing to write the result into '{}': another breastsim "
+                                       "run is writing there (lock {})",
+                                       t._path.string(), t._lock_file.string()));
+        }
+        struct stat a{}, b{};
+        if (fstat(fd, &a) == 0 && ::stat(t._lock_file.c_str(), &b) == 0 && a.st_ino == b.st_ino)
+          t._lock_fd = fd; // the lock file was not unlinked by its previous holder meanwhile
+        else
+          ::close(fd);
+      }
+      if (t._lock_fd < 0)
+        throw InputError(fmt::format("cannot lock '{}'", t._lock_file.string()));
+      interrupt::register_path(t._lock_file);
+      remove_stale_staging(t._path);
+    }
+    catch (const InputError& e)
+    {
+      error = e.what();
+    }
+    catch (const std::exception& e)
+    {
+      error = fmt::format("cannot prepare the result folder '{}': {}", given, e.what());
+    }
+  }
+  std::string p = t._path.string();
+  for (std::string* s : {&error, &p})
+  {
+    int n = static_cast<int>(s->size());
+    MPI_Bcast(&n, 1, MPI_INT, 0, comm);
+    s->resize(n);
+    MPI_Bcast(s->data(), n, MPI_CHAR, 0, comm);
+  }
+  if (!error.empty())
+    throw InputError(error);
+  t._path = p;
+  return t;
+}
+
+OutputTarget::OutputTarget(OutputTarget&& o) noexcept
+    : _path(std::move(o._path)), _rules(std::move(o._rules)), _lock_fd(o._lock_fd),
+      _lock_file(std::move(o._lock_file))
+{
+  o._lock_fd = -1;
+  o._lock_file.clear();
+}
+
+OutputTarget::~OutputTarget()
+{
+  if (_lock_fd < 0)
+    return;
+  std::error_code ec;
+  fs::remove(_lock_file, ec); // unlinked while held; the next holder checks the inode
+  interrupt::unregister_path(_lock_file);
+  ::close(_lock_fd);
+}
+
+fs::path claim_output_file(const std::string& given, const OutputRules& rules, const std::string& what)
+{
+  const fs::path p = normalise_path(given, what);
+  auto no = [&](const std::string& why)
+  { return InputError(fmt::format("refusing to write {} '{}': {}", what, p.string(), why)); };
+  if (p == p.root_path() || is_ancestor_or_self(p, rules.protect.home)
+      || is_ancestor_or_self(p, rules.protect.cwd))
+    throw no("it is a folder that must not be replaced");
+  for (const auto& in : rules.inputs)
+  {
+    std::error_code ec;
+    if (fs::weakly_canonical(fs::absolute(in), ec) == p && !ec)
+      throw no("it is an input file of this run");
+  }
+  std::error_code ec;
+  const auto st = fs::symlink_status(p, ec);
+  if (ec || !fs::exists(st))
+    return p;
+  if (!fs::is_regular_file(st))
+    throw no("it exists and is not a regular file");
+  try
+  {
+    std::ifstream in(p);
+    const auto j = nlohmann::json::parse(in);
+    if (j.is_object() && j.value("written_by", "").rfind("breastsim", 0) == 0)
+      return p;
+  }
+  catch (const std::exception&)
+  {
+  }
+  throw no("the file exists and was not written by breastsim (choose a new name)");
+}
+} // namespace breastsim
