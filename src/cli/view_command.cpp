@@ -37,7 +37,9 @@ Command add_view_command(CLI::App& root)
               throw InputError(fmt::format("refusing to write pictures into '{}': it has no {} "
                                            "marker, so breastsim did not write it",
                                            dir.string(), result_marker));
-            if (auto why = refusal_reason(dir, OutputRules{}))
+            OutputRules rules; // a finished, marked folder with nothing foreign in it;
+            rules.protect = {"/", "", ""}; // `view .` inside a result folder is fine
+            if (auto why = refusal_reason(dir, rules))
               throw InputError(*why);
             check_picture_tools(MPI_COMM_WORLD);
             render_pictures(o->result_dir, {o->compare, o->size}, MPI_COMM_WORLD);
