@@ -5,6 +5,7 @@
 #include "errors.hpp"
 #include "output.hpp"
 #include "output_target.hpp"
+#include "sweep.hpp"
 #include <fstream>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -221,4 +222,20 @@ TEST(SizeEstimate, DefaultCaseAndTheFinestAllowedMesh)
   Config c;
   c.set("geometry.mesh_size", 0.0002);
   EXPECT_THROW(c.validate(), InputError);
+}
+
+TEST(SweepValues, EachKeyIsParsedAsItsOwnType)
+{
+  const Config c;
+  const auto orders = sweep_values(c, "geometry.order", "1,2");
+  ASSERT_EQ(orders.size(), 2u);
+  EXPECT_EQ(std::get<std::int64_t>(orders[1]), 2);
+  const auto fixed = sweep_values(c, "base.fixed", "true,false");
+  EXPECT_TRUE(std::get<bool>(fixed[0]));
+  EXPECT_FALSE(std::get<bool>(fixed[1]));
+  EXPECT_DOUBLE_EQ(std::get<double>(sweep_values(c, sweep_key("a"), "35")[0]), 35.0);
+  EXPECT_EQ(plain_text(fixed[0]), "true");
+  EXPECT_THROW(sweep_values(c, "geometry.order", "1,1e30"), InputError);
+  EXPECT_THROW(sweep_key("postures.names"), InputError);
+  EXPECT_THROW(sweep_key("case.name"), InputError);
 }
