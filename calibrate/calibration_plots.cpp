@@ -1,27 +1,11 @@
 #include "calibration_plots.hpp"
 #include "errors.hpp"
-#include "interrupt.hpp"
 #include "log.hpp"
 #include "viewer.hpp"
 #include <vector>
 
-
 namespace breastsim::calibration
 {
-namespace
-{
-/// Run `argv` (no shell) on rank 0 and share its exit code (-1: could not run).
-int run_on_root(const std::vector<std::string>& argv, MPI_Comm comm)
-{
-  int rank, code = 0;
-  MPI_Comm_rank(comm, &rank);
-  if (rank == 0)
-    code = interrupt::run_child(argv);
-  MPI_Bcast(&code, 1, MPI_INT, 0, comm);
-  return code;
-}
-} // namespace
-
 void render_calibration_pictures(const std::filesystem::path& dir, const std::string& size,
                                  MPI_Comm comm)
 {

@@ -1,6 +1,7 @@
 #include "output.hpp"
 #include "errors.hpp"
 #include "interrupt.hpp"
+#include "on_root.hpp"
 #include <cerrno>
 #include <cstring>
 #include <dolfinx/io/VTKFile.h>
@@ -12,50 +13,6 @@
 namespace breastsim
 {
 namespace fs = std::filesystem;
-
-namespace
-{
-int rank_of(MPI_Comm comm)
-{
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  return rank;
-}
-
-/// Run `f` on rank 0; every rank throws what it threw (as InputError or
-/// runtime_error).
-template <typename F>
-void on_root(MPI_Comm comm, F&& f)
-{
-  std::string error;
-  int input = 0;
-  if (rank_of(comm) == 0)
-  {
-    try
-    {
-      f();
-    }
-    catch (const InputError& e)
-    {
-      error = e.what();
-      input = 1;
-    }
-    catch (const std::exception& e)
-    {
-      error = e.what();
-    }
-  }
-  int n = static_cast<int>(error.size());
-  MPI_Bcast(&n, 1, MPI_INT, 0, comm);
-  MPI_Bcast(&input, 1, MPI_INT, 0, comm);
-  error.resize(n);
-  MPI_Bcast(error.data(), n, MPI_CHAR, 0, comm);
-  if (n && input)
-    throw InputError(error);
-  if (n)
-    throw std::runtime_error(error);
-}
-} // namespace
 
 OutputDir::OutputDir(const OutputTarget& target, MPI_Comm comm)
     : _final(target.path()), _rules(target.rules()), _comm(comm)

@@ -1,6 +1,7 @@
 #include "output_target.hpp"
 #include "errors.hpp"
 #include "interrupt.hpp"
+#include "on_root.hpp"
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -106,24 +107,38 @@ fs::path normalise_path(const std::string& given, const std::string& what)
   return p;
 }
 
-std::optional<std::string> refusal_reason(const fs::path& target, const OutputRules& rules)
+namespace
+{
+/// Why `p` must never be written, whatever it holds: the root, $HOME, the
+/// working directory or an ancestor of them, an input file or its ancestor.
+std::optional<std::string> protected_reason(const fs::path& p, const OutputRules& rules)
 {
   const ProtectedPaths& pp = rules.protect;
-  if (target == pp.root || target == target.root_path())
-    return refuse(target, "it is the file-system root");
-  if (is_ancestor_or_self(target, pp.home))
-    return refuse(target, pp.home == target ? "it is your home folder ($HOME)"
-                                            : "it holds your home folder ($HOME)");
-  if (is_ancestor_or_self(target, pp.cwd))
-    return refuse(target, pp.cwd == target ? "it is the working directory"
-                                           : "it holds the working directory");
+  if (p == pp.root || p == p.root_path())
+    return "it is the file-system root";
+  if (is_ancestor_or_self(p, pp.home))
+    return pp.home == p ? "it is your home folder ($HOME)" : "it holds your home folder ($HOME)";
+  if (is_ancestor_or_self(p, pp.cwd))
+    return pp.cwd == p ? "it is the working directory" : "it holds the working directory";
   for (const auto& in : rules.inputs)
   {
     std::error_code ec;
     const fs::path f = fs::weakly_canonical(fs::absolute(in), ec);
-    if (!ec && (f == target || is_ancestor_or_self(target, f.parent_path())))
-      return refuse(target, fmt::format("it holds the input file '{}'", in.string()));
+    if (ec)
+      continue;
+    if (f == p)
+      return fmt::format("it is an input file of this run ('{}')", in.string());
+    if (is_ancestor_or_self(p, f.parent_path()))
+      return fmt::format("it holds the input file '{}'", in.string());
   }
+  return std::nullopt;
+}
+} // namespace
+
+std::optional<std::string> refusal_reason(const fs::path& target, const OutputRules& rules)
+{
+  if (auto why = protected_reason(target, rules))
+    return refuse(target, *why);
   std::error_code ec;
   const auto st = fs::symlink_status(target, ec);
   if (ec || !fs::exists(st))
@@ -234,64 +249,64 @@ int remove_stale_staging(const fs::path& target)
   return removed;
 }
 
+namespace
+{
+/// Open and flock `lock_file`; InputError if another run holds it. Retries
+/// when the previous holder unlinked the file between our open and flock.
+int acquire_lock(const fs::path& lock_file, const fs::path& target)
+{
+  for (int attempt = 0; attempt < 5; ++attempt)
+  {
+    const int fd = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0)
+      throw InputError(fmt::format("cannot create the lock file '{}': {}", lock_file.string(),
+                                   std::strerror(errno)));
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0)
+    {
+      ::close(fd);
+      throw InputError(fmt::format("refusing to write the result into '{}': another breastsim "
+                                   "run is writing there (lock {})",
+                                   target.string(), lock_file.string()));
+    }
+    struct stat a{}, b{};
+    if (fstat(fd, &a) == 0 && ::stat(lock_file.c_str(), &b) == 0 && a.st_ino == b.st_ino)
+      return fd;
+    ::close(fd);
+  }
+  throw InputError(fmt::format("cannot lock '{}'", lock_file.string()));
+}
+} // namespace
+
 OutputTarget OutputTarget::claim(const std::string& given, const OutputRules& rules, MPI_Comm comm)
 {
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  std::string error;
   OutputTarget t({}, rules);
-  if (rank == 0)
-  {
-    try
-    {
-      t._path = normalise_path(given);
-      if (auto why = refusal_reason(t._path, rules))
-        throw InputError(*why);
-      fs::create_directories(t._path.parent_path());
-      t._lock_file = t._path.parent_path() / ("." + t._path.filename().string() + ".breastsim-lock");
-      for (int attempt = 0; attempt < 5 && t._lock_fd < 0; ++attempt)
-      {
-        const int fd = ::open(t._lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-        if (fd < 0)
-          throw InputError(fmt::format("cannot create the lock file '{}': {}", t._lock_file.string(),
-                                       std::strerror(errno)));
-        if (flock(fd, LOCK_EX | LOCK_NB) != 0)
-        {
-          ::close(fd);
-          throw InputError(fmt::format("refusing to write the result into '{}': another breastsim "
-                                       "run is writing there (lock {})",
-                                       t._path.string(), t._lock_file.string()));
-        }
-        struct stat a{}, b{};
-        if (fstat(fd, &a) == 0 && ::stat(t._lock_file.c_str(), &b) == 0 && a.st_ino == b.st_ino)
-          t._lock_fd = fd; // the lock file was not unlinked by its previous holder meanwhile
-        else
-          ::close(fd);
-      }
-      if (t._lock_fd < 0)
-        throw InputError(fmt::format("cannot lock '{}'", t._lock_file.string()));
-      interrupt::register_path(t._lock_file);
-      remove_stale_staging(t._path);
-    }
-    catch (const InputError& e)
-    {
-      error = e.what();
-    }
-    catch (const std::exception& e)
-    {
-      error = fmt::format("cannot prepare the result folder '{}': {}", given, e.what());
-    }
-  }
+  on_root(comm,
+          [&]
+          {
+            try
+            {
+              t._path = normalise_path(given);
+              if (auto why = refusal_reason(t._path, rules))
+                throw InputError(*why);
+              fs::create_directories(t._path.parent_path());
+              t._lock_file
+                  = t._path.parent_path() / ("." + t._path.filename().string() + ".breastsim-lock");
+              t._lock_fd = acquire_lock(t._lock_file, t._path);
+              interrupt::register_path(t._lock_file);
+              remove_stale_staging(t._path);
+            }
+            catch (const InputError&)
+            {
+              throw;
+            }
+            catch (const std::exception& e)
+            {
+              throw InputError(
+                  fmt::format("cannot prepare the result folder '{}': {}", given, e.what()));
+            }
+          });
   std::string p = t._path.string();
-  for (std::string* s : {&error, &p})
-  {
-    int n = static_cast<int>(s->size());
-    MPI_Bcast(&n, 1, MPI_INT, 0, comm);
-    s->resize(n);
-    MPI_Bcast(s->data(), n, MPI_CHAR, 0, comm);
-  }
-  if (!error.empty())
-    throw InputError(error);
+  broadcast(p, comm);
   t._path = p;
   return t;
 }
@@ -319,15 +334,8 @@ fs::path claim_output_file(const std::string& given, const OutputRules& rules, c
   const fs::path p = normalise_path(given, what);
   auto no = [&](const std::string& why)
   { return InputError(fmt::format("refusing to write {} '{}': {}", what, p.string(), why)); };
-  if (p == p.root_path() || is_ancestor_or_self(p, rules.protect.home)
-      || is_ancestor_or_self(p, rules.protect.cwd))
-    throw no("it is a folder that must not be replaced");
-  for (const auto& in : rules.inputs)
-  {
-    std::error_code ec;
-    if (fs::weakly_canonical(fs::absolute(in), ec) == p && !ec)
-      throw no("it is an input file of this run");
-  }
+  if (auto why = protected_reason(p, rules))
+    throw no(*why);
   std::error_code ec;
   const auto st = fs::symlink_status(p, ec);
   if (ec || !fs::exists(st))

@@ -6,12 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-
 namespace breastsim
 {
-namespace
-{
-/// Run on rank 0, share the exit code with every rank.
 int run_on_root(const std::vector<std::string>& argv, MPI_Comm comm)
 {
   int rank, code = 0;
@@ -21,6 +17,9 @@ int run_on_root(const std::vector<std::string>& argv, MPI_Comm comm)
   MPI_Bcast(&code, 1, MPI_INT, 0, comm);
   return code;
 }
+
+namespace
+{
 
 std::string script(const char* name) { return (viewer_dir() / name).string(); }
 

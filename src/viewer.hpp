@@ -22,6 +22,10 @@ std::filesystem::path viewer_dir();
 /// Python interpreter used for the scripts (/usr/bin/python3, or $BREASTSIM_PYTHON).
 std::string viewer_python();
 
+/// Collective. Run `argv` (no shell; interrupt::run_child) on rank 0 and give
+/// every rank its exit code (-1: it could not run).
+int run_on_root(const std::vector<std::string>& argv, MPI_Comm comm);
+
 /// Collective. Throws std::runtime_error naming the missing piece and how to
 /// install it unless python3 with matplotlib and numpy is available.
 void check_picture_tools(MPI_Comm comm);
