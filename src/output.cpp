@@ -14,6 +14,22 @@ namespace breastsim
 {
 namespace fs = std::filesystem;
 
+namespace
+{
+/// The message for a failed write of `file`: the device is full, or `what`.
+std::string write_failure(const fs::path& file, const std::string& what)
+{
+  const int err = errno; // before fs::space can change it
+  std::error_code ec;
+  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  const auto space = fs::space(dir, ec);
+  if (err == ENOSPC || err == EDQUOT || (!ec && space.available < (1u << 20)))
+    return fmt::format("cannot write '{}': no space left on device ({} bytes free)",
+                       file.string(), ec ? 0 : space.available);
+  return fmt::format("cannot write '{}': {}", file.string(), what);
+}
+} // namespace
+
 OutputDir::OutputDir(const OutputTarget& target, MPI_Comm comm)
     : _final(target.path()), _rules(target.rules()), _comm(comm)
 {
@@ -71,17 +87,6 @@ void OutputDir::commit()
           });
   _committed = true;
   MPI_Barrier(_comm);
-}
-
-std::string write_failure(const fs::path& file, const std::string& what)
-{
-  std::error_code ec;
-  const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  const auto space = fs::space(dir, ec);
-  if (errno == ENOSPC || errno == EDQUOT || (!ec && space.available < (1u << 20)))
-    return fmt::format("cannot write '{}': no space left on device ({} bytes free)",
-                       file.string(), ec ? 0 : space.available);
-  return fmt::format("cannot write '{}': {}", file.string(), what);
 }
 
 void write_json(const fs::path& file, const nlohmann::json& j, MPI_Comm comm)

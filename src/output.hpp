@@ -43,8 +43,6 @@ void write_text(const std::filesystem::path& file, const std::string& text, MPI_
 /// Write a single result file (rank 0) claimed by claim_output_file: through
 /// a temporary sibling renamed into place; objects get "written_by".
 void write_owned_json(const std::filesystem::path& file, nlohmann::json j, MPI_Comm comm);
-/// The message for a failed write of `file`: the device is full, or `what`.
-std::string write_failure(const std::filesystem::path& file, const std::string& what);
 /// Add the files below `dir` to its marker (after `view` wrote pictures).
 void refresh_marker(const std::filesystem::path& dir, MPI_Comm comm);
 /// Write the displacement of `model` on its mesh (XDMF; and VTK if `vtk`).

@@ -140,9 +140,9 @@ Command add_calibrate_command(CLI::App& root)
             calibration::CalibrateOptions co;
             co.optimizer.algorithm = o->algorithm;
             co.optimizer.max_evals = o->max_evals;
-            const std::string out_name = o->out.out.empty() ? default_out : o->out.out;
             co.checkpoint = claim_file(o->checkpoint.empty()
-                                           ? normalise_path(out_name).string() + ".checkpoint.json"
+                                           ? normalise_path(output_name(o->out, default_out)).string()
+                                                 + ".checkpoint.json"
                                            : o->checkpoint,
                                        inputs, "the checkpoint");
             const auto out = claim_output(o->out, default_out, inputs);

@@ -93,13 +93,17 @@ OutputRules rules_for(bool force, const std::vector<std::string>& inputs)
 }
 } // namespace
 
-OutputTarget claim_output(const OutputOption& o, const std::string& default_out,
-                          const std::vector<std::string>& inputs)
+std::string output_name(const OutputOption& o, const std::string& default_out)
 {
   if (o.option && o.option->count() > 0 && o.out.empty())
     throw InputError("--out is empty: give a folder name");
-  return OutputTarget::claim(o.out.empty() ? default_out : o.out, rules_for(o.force, inputs),
-                             MPI_COMM_WORLD);
+  return o.out.empty() ? default_out : o.out;
+}
+
+OutputTarget claim_output(const OutputOption& o, const std::string& default_out,
+                          const std::vector<std::string>& inputs)
+{
+  return OutputTarget::claim(output_name(o, default_out), rules_for(o.force, inputs), MPI_COMM_WORLD);
 }
 
 std::filesystem::path claim_file(const std::string& file, const std::vector<std::string>& inputs,

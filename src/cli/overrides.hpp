@@ -25,6 +25,9 @@ struct OutputOption
   CLI::Option* option = nullptr; ///< to tell `--out ""` from no --out
 };
 void add_output_option(CLI::App* app, OutputOption& o, const std::string& help);
+/// The folder asked for: `o.out`, or `default_out` without --out
+/// (InputError for an explicit `--out ""`).
+std::string output_name(const OutputOption& o, const std::string& default_out);
 /// Claim `o.out` (or `default_out`) for this run, refusing it (InputError,
 /// every rank) unless breastsim may replace it; `inputs` are the run's input files.
 OutputTarget claim_output(const OutputOption& o, const std::string& default_out,
