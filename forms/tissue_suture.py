@@ -5,7 +5,7 @@
 
 UFL cannot evaluate u at g(X). The partner field w_tissue (a displacement-like
 Coefficient in the space of u) holds w = P u: P is the sparse interpolation
-matrix, built in C++ (src/partner_field.cpp) from the element basis, whose
+matrix, built in C++ (src/model/model/partner_field.cpp) from the element basis, whose
 row for the node X_i of face A evaluates u at g(X_i). Between the nodes w is
 interpolated like u, so on face A
     f(g(X)) - f(X) = g(X) + w - X - u.

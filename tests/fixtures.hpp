@@ -3,6 +3,8 @@
 #include "config.hpp"
 #include "model.hpp"
 #include "load_stepping.hpp"
+#include "model_setup.hpp"
+#include "neutral_mesh.hpp"
 #include "simulate.hpp"
 #include "surgery.hpp"
 #include <dolfinx/la/petsc.h>

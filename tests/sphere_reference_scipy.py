@@ -1,5 +1,5 @@
 # Independent cross-check (scipy solve_bvp, not part of ctest) of sphere_reference()
-# in src/sphere_bench.cpp: the pressurised thick sphere of the energy (eq. 5)
+# in verification/sphere_bench.cpp: the pressurised thick sphere of the energy (eq. 5)
 # W = mu/2 (I1 - 3 - 2 ln J) + lam/2 (J - 1)^2, radial r(R), dead inner pressure p0.
 # Usage: /usr/bin/python3 tests/sphere_reference_scipy.py A B mu lambda p0 [tol]
 import sys

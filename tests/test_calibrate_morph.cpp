@@ -1,10 +1,10 @@
 // Mesh morphing of the neutral cap for the calibration of R and H
-// (meshes/cap_morph.hpp, calibrate/forward_model.hpp): the morphed mesh is
+// (src/mesh/cap_morph.hpp, calibrate/forward/forward_model.hpp): the morphed mesh is
 // the new cap (skin on the new sphere, base in y = 0, symmetry face in
 // x = 0), no element inverts, and the observables are smooth in R and H
 // (central differences with two step sizes agree).
-#include "../meshes/cap_morph.hpp"
-#include "../meshes/half_cap.hpp"
+#include "cap_morph.hpp"
+#include "half_cap.hpp"
 #include "fit_parameters.hpp"
 #include "forward_model.hpp"
 #include <cmath>

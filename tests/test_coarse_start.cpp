@@ -1,4 +1,4 @@
-// Grid sequencing (src/coarse_start.hpp): when it applies, that the transfer
+// Grid sequencing (src/solver/coarse_start.hpp): when it applies, that the transfer
 // reproduces the coarse field at the fine nodes, and that a posture solved
 // from the coarse solution is the same equilibrium as one solved from rest,
 // in fewer fine Newton iterations.

@@ -1,5 +1,5 @@
 // Each energy term at a homogeneous deformation equals its closed form.
-#include "../meshes/half_cap.hpp"
+#include "half_cap.hpp"
 #include "fixtures.hpp"
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The parametric half cap: tags, areas and volume against closed forms,
 // the nipple vertex, and mesh quality.
-#include "../meshes/half_cap.hpp"
+#include "half_cap.hpp"
 #include "fixtures.hpp"
 #include "mesh_quality.hpp"
 #include <gtest/gtest.h>

@@ -1,11 +1,11 @@
 // Method of manufactured solutions for the full energy (tissue + plain skin
-// membrane + base springs; forms/mms.py, src/mms.cpp): the observed L2 and H1
+// membrane + base springs; verification/forms/mms.py, verification/mms.cpp): the observed L2 and H1
 // error orders under uniform refinement of the half cap must be within 0.1 of
 // the theoretical p + 1 and p of Pp elements. docs/CONVERGENCE.md has the
 // measured tables.
 //
 // Meshes: the gmsh cap of mesh_size 16 mm (566 cells) red-refined twice
-// without moving nodes (4528, 36224 cells; src/nested_mesh.cpp): nested, the
+// without moving nodes (4528, 36224 cells; src/mesh/nested_mesh.cpp): nested, the
 // same polyhedron at every level, h exactly halved. Measured (finest pair):
 //   P1, lambda = mu = 400 Pa:       L2 1.960, H1 1.000
 //   P2, default (lambda/mu = 20):   L2 3.030, H1 2.005
@@ -13,7 +13,7 @@
 // 0.476) P1 is in its pre-asymptotic locking regime on these meshes: its L2
 // order climbs 1.46, 1.64, 1.80 over four levels (tests/cli/mms_locking.sh,
 // label long) while P2 on the same meshes is already at 3.02-3.03.
-#include "../meshes/half_cap.hpp"
+#include "half_cap.hpp"
 #include "breastsim_registry.hpp"
 #include "mesh_quality.hpp"
 #include "nested_mesh.hpp"
@@ -136,7 +136,7 @@ Measures measure(const meshes::TaggedMesh& m)
 }
 } // namespace
 
-// Red refinement (src/nested_mesh.cpp): 8 cells per cell, 4 facets per facet
+// Red refinement (src/mesh/nested_mesh.cpp): 8 cells per cell, 4 facets per facet
 // with their tags, volume and tagged areas unchanged (no node moves), the
 // longest edge exactly halved and the cells no worse than the coarse ones
 // (shortest-diagonal rule: min dihedral angle kept); straight P2: a node at

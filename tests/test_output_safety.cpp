@@ -1,4 +1,4 @@
-// The refusal rule of result folders (src/output_target.hpp) on a fake file
+// The refusal rule of result folders (src/io/output_target.hpp) on a fake file
 // system: a scratch folder stands in for "/", $HOME and the working
 // directory, so the rule for the real root is tested without touching it.
 #include "config.hpp"

@@ -1,6 +1,6 @@
 // Physical consistency of the forward model: zero load, frame rotation,
 // the fixed-base limit of stiff springs, and inverted elements.
-#include "../meshes/half_cap.hpp"
+#include "half_cap.hpp"
 #include "breastsim_registry.hpp"
 #include "errors.hpp"
 #include "fixtures.hpp"

@@ -1,4 +1,4 @@
-// Point location in meshes of any geometry order (src/point_location.hpp):
+// Point location in meshes of any geometry order (src/mesh/point_location.hpp):
 // the projection onto the reference tetrahedron, the curved-cell pull-back,
 // and locate_points on P1 and curved P2 meshes of the half cap.
 #include "fixtures.hpp"

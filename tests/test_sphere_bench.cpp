@@ -1,7 +1,7 @@
 // Reference benchmark (issue 5, docs/VERIFICATION.md): thick-walled sphere
 // A = 10 mm, B = 20 mm of the default tissue (mu 400 Pa, lambda 8000 Pa)
 // under a dead inner pressure p0 = mu (inner radius +29 %): the
-// finite-element octant (forms/sphere_bench.py) against the radially
+// finite-element octant (verification/forms/sphere_bench.py) against the radially
 // symmetric solution of the same energy (ODE, sphere_reference).
 #include "sphere_bench.hpp"
 #include <cmath>

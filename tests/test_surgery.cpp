@@ -1,7 +1,7 @@
 // Surgery: incision geometry and remeshing against independent analytic
 // computations, the suture term on a cap and a block, and the neutral-state
 // reset.
-#include "../meshes/incision.hpp"
+#include "incision.hpp"
 #include "errors.hpp"
 #include "fixtures.hpp"
 #include "reference_reset.hpp"

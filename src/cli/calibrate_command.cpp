@@ -1,9 +1,9 @@
 // `breastsim calibrate MEASUREMENTS.json`: fit case parameters to measurements.
 // `breastsim measure CASE.toml`: synthetic measurements from the forward model.
-#include "../config.hpp"
-#include "../errors.hpp"
-#include "../log.hpp"
-#include "../output.hpp"
+#include "config.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "output.hpp"
 #include "calibrate.hpp"
 #include "diagnose.hpp"
 #include "diagnosis_output.hpp"
@@ -13,7 +13,7 @@
 #include "command.hpp"
 #include "overrides.hpp"
 #include "synthetic.hpp"
-#include "../viewer.hpp"
+#include "viewer.hpp"
 #include <fmt/format.h>
 #include <cstdio>
 #include <iostream>

@@ -4,12 +4,12 @@
 // post-operative (observed order,
 // Richardson extrapolation, GCI of the finest level) or, with --mms, the
 // manufactured-solution verification (L2/H1 error orders). docs/CONVERGENCE.md.
-#include "../config.hpp"
-#include "../convergence.hpp"
-#include "../errors.hpp"
-#include "../log.hpp"
-#include "../mms.hpp"
-#include "../output.hpp"
+#include "config.hpp"
+#include "convergence.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "mms.hpp"
+#include "output.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
 #include <iostream>

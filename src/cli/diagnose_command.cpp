@@ -1,9 +1,9 @@
 // `breastsim diagnose RECORDING.json --case CASE.toml`: locate where the
 // simulation and a 3D recording differ, name the physics that was left out,
 // model it, refit and show the fit improve (issue 7, docs/DIAGNOSE.md).
-#include "../log.hpp"
-#include "../output.hpp"
-#include "../viewer.hpp"
+#include "log.hpp"
+#include "output.hpp"
+#include "viewer.hpp"
 #include "command.hpp"
 #include "diagnose.hpp"
 #include "diagnosis_output.hpp"

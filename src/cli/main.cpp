@@ -1,9 +1,9 @@
 // breastsim command-line interface: a thin layer over the library. Each
 // subcommand is in its own file (see command.hpp) and listed once below.
-#include "../errors.hpp"
-#include "../interrupt.hpp"
-#include "../log.hpp"
-#include "../output_target.hpp"
+#include "errors.hpp"
+#include "interrupt.hpp"
+#include "log.hpp"
+#include "output_target.hpp"
 #include "command.hpp"
 #include <dolfinx/common/log.h>
 #include <iostream>

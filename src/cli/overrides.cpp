@@ -1,5 +1,5 @@
 #include "overrides.hpp"
-#include "../errors.hpp"
+#include "errors.hpp"
 #include <fmt/format.h>
 #include <petscksp.h>
 

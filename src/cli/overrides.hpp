@@ -1,8 +1,8 @@
 #pragma once
 // Shared CLI helpers: load a case with --set overrides; pass PETSc options
 // (checked); the --out/--force options and the claim of the result folder.
-#include "../config.hpp"
-#include "../output_target.hpp"
+#include "config.hpp"
+#include "output_target.hpp"
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <string>

@@ -1,8 +1,8 @@
 // `breastsim record CASE.toml --out REC.json [--hidden NAME --value Q]`:
 // a synthetic 3D surface recording (issue 7) of the case with one hidden
 // candidate physics (or none), on a finer mesh, with noise.
-#include "../log.hpp"
-#include "../output.hpp"
+#include "log.hpp"
+#include "output.hpp"
 #include "candidates.hpp"
 #include "command.hpp"
 #include "overrides.hpp"

@@ -1,7 +1,7 @@
 // `breastsim simulate CASE.toml`: solve a case in each requested posture.
-#include "../config.hpp"
-#include "../log.hpp"
-#include "../simulate.hpp"
+#include "config.hpp"
+#include "log.hpp"
+#include "simulate.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
 #include <iostream>

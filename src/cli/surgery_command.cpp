@@ -1,7 +1,7 @@
 // `breastsim surgery CASE.toml`: incision, sutures, final neutral state and
 // post-operative postures.
-#include "../log.hpp"
-#include "../surgery.hpp"
+#include "log.hpp"
+#include "surgery.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
 #include <iostream>

@@ -1,8 +1,8 @@
 // `breastsim sweep CASE.toml --vary a=25,30,35 --vary h=0.02,0.03`: the
 // surgery on a grid of incisions, one table.
-#include "../errors.hpp"
-#include "../log.hpp"
-#include "../sweep.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "sweep.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
 #include <iostream>

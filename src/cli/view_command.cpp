@@ -1,9 +1,9 @@
 // `breastsim view RESULT_DIR`: (re)render the pictures of a result folder and
 // write its self-contained 3D page index.html.
-#include "../errors.hpp"
-#include "../log.hpp"
-#include "../output.hpp"
-#include "../viewer.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "output.hpp"
+#include "viewer.hpp"
 #include "command.hpp"
 #include <fmt/format.h>
 #include <iostream>

@@ -2,7 +2,7 @@
 """Write index.html: a self-contained 3D page of a breastsim result folder.
 
 The page inlines three.js (npm package `three`, installed into
-src/viewer/web/node_modules by `.ci/setup`), its OrbitControls, the viewer
+src/io/viewer/web/node_modules by `.ci/setup`), its OrbitControls, the viewer
 script web/viewer.js and the surface_<posture>.json data of the result folder
 (and of a comparison folder), so it works offline from file:// and fetches
 nothing.

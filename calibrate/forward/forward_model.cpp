@@ -1,0 +1,134 @@
+#include "forward_model.hpp"
+#include "cap_morph.hpp"
+#include "log.hpp"
+#include "model_setup.hpp"
+#include "neutral_mesh.hpp"
+#include "posture_solve.hpp"
+#include "surface_export.hpp"
+#include <algorithm>
+
+namespace breastsim::calibration
+{
+ForwardModel::ForwardModel(std::vector<Posture> postures, MPI_Comm comm, bool morph)
+    : _postures(std::move(postures)), _comm(comm), _morph(morph), _last(_postures.size())
+{
+}
+
+ForwardModel::~ForwardModel() = default;
+
+std::int64_t ForwardModel::dofs() const { return _model ? _model->num_dofs() : 0; }
+
+void ForwardModel::attach_solver(const Config& c)
+{
+  // The Newton solver (AMG near-nullspace) and the probe (reference node
+  // coordinates) depend on the node positions: rebuilt after every change.
+  _newton.reset();
+  _probe.reset();
+  _newton = std::make_unique<NewtonSolver>(*_model, newton_options(c));
+  _probe = std::make_unique<ObservableProbe>(*_model, std::array<double, 3>{0.0, _H, 0.0});
+}
+
+void ForwardModel::rebuild(const Config& c)
+{
+  _newton.reset();
+  _probe.reset();
+  _model = std::make_unique<Model>(build_neutral_mesh(c, _comm),
+                                   Constraints{true, c.flag("base.fixed")});
+  _R = _R0 = c.number("geometry.R");
+  _H = _H0 = c.number("geometry.H");
+  _mesh_size = c.number("geometry.mesh_size");
+  _fixed_base = c.flag("base.fixed");
+  _order = static_cast<int>(c.integer("geometry.order"));
+  _refinements = static_cast<int>(c.integer("geometry.refinements"));
+  const auto x = _model->mesh().mesh->geometry().x();
+  _X0.assign(x.begin(), x.end());
+  attach_solver(c);
+  for (auto& u : _last)
+    u.clear(); // solutions on another mesh cannot start this one
+  ++_meshes;
+}
+
+void ForwardModel::morph(double R, double H)
+{
+  // Every geometry node (owned and ghost, P2 edge nodes too) is mapped from
+  // its generated position, so the result does not depend on the path of R, H.
+  auto x = _model->mesh().mesh->geometry().x();
+  std::copy(_X0.begin(), _X0.end(), x.begin());
+  meshes::morph_cap(x, {_R0, _H0}, {R, H});
+  _R = R;
+  _H = H;
+  ++_morphs;
+  // The last solutions stay as warm starts: same topology, nearby shape.
+}
+
+Observables ForwardModel::solve_one(std::size_t i, const Config& c)
+{
+  Model& m = *_model;
+  auto x = m.displacement()->x()->mutable_array();
+  if (!_last[i].empty())
+  {
+    // Warm start: the equilibrium of the same posture at the previous
+    // parameters, solved directly at full load.
+    const double f_ext = set_gravity(m, gravity_vector(_postures[i].theta_deg, c.number("gravity.g")));
+    m.set_parameter("load", {1.0});
+    std::copy(_last[i].begin(), _last[i].end(), x.begin());
+    m.displacement()->x()->scatter_fwd();
+    _newton->invalidate_preconditioner();
+    const NewtonReport r = _newton->solve(f_ext);
+    if (r.converged)
+    {
+      ++_warm_starts;
+      _last[i].assign(x.begin(), x.end());
+      return _probe->measure(m);
+    }
+    log::debug("warm start of posture '{}' failed ({}); solving from rest", _postures[i].name,
+               r.message);
+  }
+  // From rest with the gravity ramp of `simulate`.
+  std::fill(x.begin(), x.end(), 0.0);
+  PostureResult r = solve_posture(m, *_newton, *_probe, _postures[i], c);
+  _last[i].assign(x.begin(), x.end());
+  return r.observables;
+}
+
+std::vector<Observables> ForwardModel::solve(const Config& c, const PostureVisitor& visit)
+{
+  const double R = c.number("geometry.R"), H = c.number("geometry.H");
+  const bool same_mesh = _model && c.number("geometry.mesh_size") == _mesh_size
+                         && static_cast<int>(c.integer("geometry.order")) == _order
+                         && static_cast<int>(c.integer("geometry.refinements")) == _refinements
+                         && c.flag("base.fixed") == _fixed_base;
+  if (!same_mesh || (!_morph && (R != _R || H != _H)))
+    rebuild(c);
+  else if (R != _R || H != _H)
+  {
+    morph(R, H);
+    attach_solver(c);
+  }
+  apply_parameters(c, *_model);
+  std::vector<Observables> obs;
+  for (std::size_t i = 0; i < _postures.size(); ++i)
+  {
+    obs.push_back(solve_one(i, c));
+    ++_posture_solves;
+    if (visit)
+      visit(i, *_model);
+  }
+  return obs;
+}
+
+std::vector<nlohmann::json> ForwardModel::surfaces(const Config& c)
+{
+  solve(c);
+  std::vector<nlohmann::json> docs;
+  auto u = _model->displacement()->x()->mutable_array();
+  for (std::size_t i = 0; i < _postures.size(); ++i)
+  {
+    std::copy(_last[i].begin(), _last[i].end(), u.begin());
+    _model->displacement()->x()->scatter_fwd();
+    docs.push_back(surface_json(gather_skin_surface(*_model), _postures[i].name,
+                                _postures[i].theta_deg));
+  }
+  return docs;
+}
+} // namespace breastsim::calibration

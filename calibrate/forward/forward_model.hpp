@@ -1,0 +1,65 @@
+#pragma once
+// The forward map of a calibration: case parameters -> observables in each
+// measured posture. Keeps one mesh/model and warm-starts each posture from
+// its last solution. When the neutral shape (R, H) changes, the mesh built
+// for the first shape is morphed onto the new cap (src/mesh/cap_morph.hpp:
+// same topology, node positions analytic in R, H), so the observables are
+// smooth in R and H; with `morph = false` it is remeshed by gmsh instead
+// (and solved from rest). A change of mesh size, order or refinements
+// always remeshes.
+#include "config.hpp"
+#include "newton.hpp"
+#include "observables.hpp"
+#include "posture.hpp"
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace breastsim::calibration
+{
+class ForwardModel
+{
+public:
+  ForwardModel(std::vector<Posture> postures, MPI_Comm comm, bool morph = true);
+  ~ForwardModel();
+  /// Called after each posture's solve with the posture's index and the
+  /// solved model (e.g. to read the deformed skin surface).
+  using PostureVisitor = std::function<void(std::size_t posture, const Model& model)>;
+
+  /// Observables of each posture (in the order given) for case `c`.
+  /// Throws SolveError if a posture cannot be solved.
+  std::vector<Observables> solve(const Config& c, const PostureVisitor& visit = {});
+  /// Solve case `c` and return the skin surface document (surface_export.hpp)
+  /// of each posture, for pictures. Collective; complete on rank 0.
+  std::vector<nlohmann::json> surfaces(const Config& c);
+
+  int posture_solves() const { return _posture_solves; }
+  int warm_starts() const { return _warm_starts; }
+  int meshes_built() const { return _meshes; }
+  int morphs() const { return _morphs; }
+  std::int64_t dofs() const;
+  const std::vector<Posture>& postures() const { return _postures; }
+
+private:
+  void rebuild(const Config& c);
+  void morph(double R, double H);
+  void attach_solver(const Config& c);
+  Observables solve_one(std::size_t i, const Config& c);
+
+  std::vector<Posture> _postures;
+  MPI_Comm _comm;
+  bool _morph;
+  double _R = -1, _H = -1;            ///< current neutral shape of the mesh
+  double _R0 = -1, _H0 = -1;          ///< shape the mesh was generated for
+  std::vector<double> _X0;            ///< geometry nodes as generated (local, (n, 3))
+  double _mesh_size = -1;
+  int _order = -1, _refinements = -1;
+  bool _fixed_base = false;
+  std::unique_ptr<Model> _model;
+  std::unique_ptr<NewtonSolver> _newton;
+  std::unique_ptr<ObservableProbe> _probe;
+  std::vector<std::vector<T>> _last; ///< last solution of each posture (empty: none yet)
+  int _posture_solves = 0, _warm_starts = 0, _meshes = 0, _morphs = 0;
+};
+} // namespace breastsim::calibration

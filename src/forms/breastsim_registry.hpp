@@ -1,0 +1,65 @@
+#pragma once
+// The C++ view of the UFL model (forms/): parameters with their case keys,
+// units, defaults and ranges; the energy terms and their default switches;
+// the boundary tags; the partner fields; the compiled forms. The tables are
+// generated from forms/ by forms/gen_registry.py into breastsim_registry.cpp;
+// this header does not change when a term is edited or added, so only that
+// file and the term's own kernels are recompiled.
+#include <string>
+#include <vector>
+#include <ufcx.h>
+
+namespace breastsim::generated
+{
+struct ParamInfo
+{
+  std::string name; // UFL Constant name
+  std::string key;  // case-file key (empty: set by the program)
+  std::string unit;
+  std::string term;
+  std::vector<double> default_value;
+  double lo, hi;
+  bool lo_open;
+  std::string doc;
+};
+
+struct TermInfo
+{
+  std::string name;
+  bool default_on;
+};
+
+struct TagInfo
+{
+  std::string name;
+  int value;
+};
+
+/// A partner field (forms/model.py): Coefficient `coefficient` of term
+/// `term` holds w = P u, u at g(X) = G X + t for the nodes X of face_a
+/// (G, t: the Constants map_matrix, map_shift); forms partner_*_<term>.
+struct PartnerInfo
+{
+  std::string term, coefficient, face_a, face_b, map_matrix, map_shift;
+};
+
+const std::vector<ParamInfo>& parameters();
+const std::vector<TermInfo>& terms();
+const std::vector<TagInfo>& tags();
+const std::vector<PartnerInfo>& partners();
+/// Value of the boundary tag `name`; throws std::logic_error if unknown.
+int tag(const std::string& name);
+
+/// Compiled form `name` of element degree `degree`, nullptr if there is
+/// none: per term energy_<t>, residual_<t>, jacobian_<t> (and
+/// partner_residual_<t>, partner_jacobian_uw_<t>, partner_jacobian_ww_<t>
+/// for a term with a partner field); volume and area_<tag>.
+ufcx_form* form(const std::string& name, int degree);
+/// det F evaluated at the element nodes (inversion check).
+ufcx_expression* detF_expression(int degree);
+/// Factory of the displacement space ('u') of the compiled model.
+using FunctionSpaceFactory = ufcx_function_space* (*)(const char*);
+FunctionSpaceFactory function_space(int degree);
+/// Element degrees compiled into this build.
+std::vector<int> degrees();
+} // namespace breastsim::generated

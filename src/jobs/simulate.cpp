@@ -1,0 +1,143 @@
+#include "simulate.hpp"
+#include "log.hpp"
+#include "model_setup.hpp"
+#include "neutral_mesh.hpp"
+#include "output.hpp"
+#include "surface_export.hpp"
+#include "viewer.hpp"
+#include <chrono>
+#include <fmt/format.h>
+
+namespace breastsim
+{
+namespace
+{
+using clock_type = std::chrono::steady_clock;
+double since(clock_type::time_point t0)
+{
+  return std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+
+} // namespace
+
+nlohmann::json to_json(const PostureResult& r)
+{
+  auto j = to_json(r.observables);
+  j["posture"] = r.posture.name;
+  j["theta_deg"] = r.posture.theta_deg;
+  j["load_steps"] = r.path.steps;
+  j["failed_load_steps"] = r.path.failed_steps;
+  j["newton_iterations"] = r.path.newton_iterations;
+  j["linear_iterations"] = r.path.linear_iterations;
+  j["wall_time_s"] = r.seconds;
+  j["min_det_F"] = r.min_det_F;
+  j["coarse_start"] = r.coarse.used;
+  j["coarse_newton_iterations"] = r.coarse.newton_iterations;
+  j["coarse_level_newton_iterations"] = r.coarse.level_newton_iterations;
+  return j;
+}
+
+std::string observables_table(const std::vector<PostureResult>& rs)
+{
+  std::string s = fmt::format("{:<12} {:>7} {:>24} {:>9} {:>8} {:>8} {:>9} {:>9} {:>7} {:>7}\n",
+                              "posture", "theta", "nipple x,y,z [mm]", "proj[mm]", "zmin[mm]",
+                              "zmax[mm]", "perim[mm]", "vol[cm3]", "newton", "time[s]");
+  for (const auto& r : rs)
+  {
+    const auto& o = r.observables;
+    s += fmt::format("{:<12} {:>7.1f} {:>7.2f},{:>7.2f},{:>7.2f} {:>9.2f} {:>8.2f} {:>8.2f} {:>9.2f} "
+                     "{:>9.2f} {:>7d} {:>7.2f}\n",
+                     r.posture.name, r.posture.theta_deg, 1e3 * o.nipple[0], 1e3 * o.nipple[1],
+                     1e3 * o.nipple[2], 1e3 * o.projection, 1e3 * o.z_min, 1e3 * o.z_max,
+                     1e3 * o.base_perimeter, 1e6 * o.volume, r.path.newton_iterations, r.seconds);
+  }
+  return s;
+}
+
+std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
+                                          const Config& c, const std::filesystem::path& dir,
+                                          CoarseStart* coarse)
+{
+  NewtonSolver newton(model, newton_options(c));
+  std::vector<PostureResult> out;
+  for (const auto& p : requested_postures(c))
+  {
+    log::info("solving posture '{}' (theta = {:g} deg)", p.name, p.theta_deg);
+    out.push_back(solve_posture(model, newton, probe, p, c, coarse));
+    write_fields(model, dir / ("displacement_" + p.name), c.flag("output.xdmf"), c.flag("output.vtk"));
+    write_surface(model, p.name, p.theta_deg, dir / ("surface_" + p.name + ".json"));
+  }
+  return out;
+}
+
+SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm)
+{
+  SimulationResult res;
+  check_picture_tools(comm); // fail before the solves, not after
+  auto t0 = clock_type::now();
+  auto mesh = build_neutral_mesh(c, comm);
+  res.mesh_seconds = since(t0);
+  res.quality = mesh_quality(*mesh.mesh);
+  log::info("mesh: {} tetrahedra (P{}), min/max dihedral {:.1f}/{:.1f} deg, min radius ratio "
+            "{:.3f}, {:.2f} s",
+            res.quality.num_cells, mesh.degree, res.quality.min_dihedral_deg,
+            res.quality.max_dihedral_deg, res.quality.min_radius_ratio, res.mesh_seconds);
+
+  Model model(mesh, Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, model);
+  res.dofs = model.num_dofs();
+  res.linear_solver = resolved_linear_solver(newton_options(c), res.dofs);
+  ObservableProbe probe(model, {0.0, c.number("geometry.H"), 0.0});
+  log::info("model: {} unknowns, linear solver {}, terms on: {}", res.dofs, res.linear_solver,
+            [&] {
+              std::string s;
+              for (const auto& t : model.term_names())
+                if (model.term_on(t))
+                  s += (s.empty() ? "" : ", ") + t;
+              return s;
+            }());
+
+  const auto coarse = make_coarse_start(c, model);
+  if (coarse)
+  {
+    res.coarse_dofs = coarse->coarse_dofs();
+    res.coarse_level_dofs = coarse->level_dofs();
+    res.coarse_setup_seconds = coarse->setup_seconds();
+  }
+
+  OutputDir dir(out, comm);
+  res.postures = solve_postures(model, probe, c, dir.path(), coarse.get());
+
+  nlohmann::json j;
+  j["case"] = c.text("case.name");
+  j["mesh"] = to_json(res.quality);
+  j["mesh"]["order"] = mesh.degree;
+  j["mesh"]["wall_time_s"] = res.mesh_seconds;
+  j["unknowns"] = res.dofs;
+  j["linear_solver"] = res.linear_solver;
+  if (coarse)
+  {
+    j["coarse_start"] = {{"unknowns", res.coarse_dofs}, {"setup_s", res.coarse_setup_seconds},
+                         {"levels", nlohmann::json::array()}};
+    for (std::size_t k = 0; k < coarse->num_levels(); ++k)
+    {
+      const NestedLevel& l = coarse->ladder()[k];
+      j["coarse_start"]["levels"].push_back({{"unknowns", res.coarse_level_dofs[k]},
+                                             {"mesh_size_m", l.mesh_size},
+                                             {"order", l.order},
+                                             {"refinements", l.refinements}});
+    }
+  }
+  int size;
+  MPI_Comm_size(comm, &size);
+  j["mpi_ranks"] = size;
+  j["postures"] = nlohmann::json::array();
+  for (const auto& r : res.postures)
+    j["postures"].push_back(to_json(r));
+  write_json(dir.path() / "summary.json", j, comm);
+  write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
+  render_pictures(dir.path(), {}, comm);
+  dir.commit();
+  return res;
+}
+} // namespace breastsim

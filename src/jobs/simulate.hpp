@@ -1,0 +1,37 @@
+#pragma once
+// The forward simulation: mesh the neutral half breast, bind the case's
+// parameters, and solve each posture from the neutral state.
+#include "config.hpp"
+#include "mesh_quality.hpp"
+#include "output_target.hpp"
+#include "posture_solve.hpp"
+#include <filesystem>
+#include <memory>
+
+namespace breastsim
+{
+struct SimulationResult
+{
+  MeshQuality quality;
+  std::int64_t dofs = 0;
+  std::string linear_solver;
+  double mesh_seconds = 0;
+  std::int64_t coarse_dofs = 0;      ///< grid sequencing: coarse unknowns (0: not used)
+  std::vector<std::int64_t> coarse_level_dofs; ///< unknowns of every level of the ladder
+  double coarse_setup_seconds = 0;   ///< coarse mesh, model and node location
+  std::vector<PostureResult> postures;
+};
+
+/// Solve every requested posture of the case from the model's current
+/// reference and write each displacement as <dir>/displacement_<posture>.
+std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
+                                          const Config& c, const std::filesystem::path& dir,
+                                          CoarseStart* coarse = nullptr);
+
+/// The whole `simulate` job. Writes into `out` (replaced only on success).
+SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm);
+
+/// Short printable table of the observables of each posture.
+std::string observables_table(const std::vector<PostureResult>& r);
+nlohmann::json to_json(const PostureResult& r);
+} // namespace breastsim

@@ -1,0 +1,234 @@
+#include "surgery.hpp"
+#include "model_setup.hpp"
+#include "neutral_mesh.hpp"
+#include "coarse_start.hpp"
+#include "breastsim_registry.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "output.hpp"
+#include "reference_reset.hpp"
+#include "viewer.hpp"
+#include <chrono>
+#include <dolfinx/io/XDMFFile.h>
+#include <fmt/format.h>
+
+namespace breastsim
+{
+namespace
+{
+using clock_type = std::chrono::steady_clock;
+double since(clock_type::time_point t0)
+{
+  return std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+
+std::array<int, 5> suture_tags()
+{
+  return {generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"),
+          generated::tag("suture_abd"), generated::tag("suture_bcd")};
+}
+} // namespace
+
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file)
+{
+  dolfinx::io::XDMFFile f(m.mesh->comm(), file.string(), "w");
+  f.write_mesh(*m.mesh);
+  m.mesh->topology_mutable().create_connectivity(2, 3);
+  f.write_meshtags(*m.facets, "/Xdmf/Domain/Grid[@Name='" + m.mesh->name + "']/Geometry");
+}
+
+meshes::IncisionSpec incision_spec(const Config& c)
+{
+  return {c.number("incision.a_deg"), c.number("incision.s"), c.number("incision.h"),
+          c.number("incision.d")};
+}
+
+double max_suture_gap(const Model& m)
+{
+  const auto X = m.space()->tabulate_dof_coordinates(false);
+  auto u = m.displacement()->x()->array();
+  double gap = 0;
+  // suture_abd -> plane x = 0 (component 0); suture_bcd -> plane y = 0 (component 1).
+  for (auto [tag, comp] : {std::pair<const char*, int>{"suture_abd", 0}, {"suture_bcd", 1}})
+    for (auto n : m.boundary_nodes(tag))
+      gap = std::max(gap, std::abs(X[3 * n + comp] + u[3 * n + comp]));
+  double global = 0;
+  MPI_Allreduce(&gap, &global, 1, MPI_DOUBLE, MPI_MAX, m.mesh().mesh->comm());
+  return global;
+}
+
+SutureReport close_sutures(Model& model, const Config& c)
+{
+  const auto t0 = clock_type::now();
+  SutureReport rep;
+  model.set_term("sutures", true);
+  model.set_term("gravity", false); // knitting happens in the neutral (gravity-free) state
+  NewtonSolver newton(model, newton_options(c));
+  // Force scale: the suture pull at the start of closure.
+  model.set_parameter("closure", {1.0});
+  const double f_ref = model.residual_norm("sutures");
+  LoadStepOptions opt = load_step_options(c);
+  opt.initial_step = std::min(opt.initial_step, 0.25);
+  rep.closure = continuation(model, newton, "closure", 0.0, 1.0, opt, "suture closure", f_ref);
+  double k = model.parameter("k_suture")[0];
+  rep.max_gap = max_suture_gap(model);
+  const double tol = c.number("surgery.max_gap");
+  while (rep.max_gap > tol)
+  {
+    if (++rep.penalty_raises > 6)
+      throw SolveError(fmt::format("suture gap {:.3g} m still above surgery.max_gap = {:.3g} m after "
+                                   "raising the penalty to {:.3g} Pa/m", rep.max_gap, tol, k));
+    auto path = continuation(model, newton, "k_suture", k, 10 * k, opt, "suture penalty", f_ref);
+    rep.closure.newton_iterations += path.newton_iterations;
+    rep.closure.linear_iterations += path.linear_iterations;
+    k *= 10;
+    rep.max_gap = max_suture_gap(model);
+    log::info("suture penalty raised to {:.3g} Pa/m: largest gap {:.4f} mm", k, 1e3 * rep.max_gap);
+  }
+  rep.k_final = k;
+  model.set_term("gravity", c.flag("terms.gravity"));
+  rep.seconds = since(t0);
+  return rep;
+}
+
+SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
+{
+  SurgeryResult r;
+  const auto cap = cap_spec(c);
+  const auto inc = incision_spec(c);
+  r.incision = meshes::incision_geometry(cap, inc); // rejects bad parameters before any work
+  check_picture_tools(comm);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+
+  // Meshes: the neutral cap and the remaining body after the incision.
+  auto t0 = clock_type::now();
+  auto pre_mesh = build_neutral_mesh(c, comm);
+  meshes::TaggedMesh cut;
+  cut.order = cap.order;
+  meshes::TaggedMesh resected = cut;
+  if (rank == 0)
+  {
+    cut = meshes::mesh_incised_cap(cap, inc, suture_tags());
+    resected = meshes::mesh_resected_part(cap, inc, suture_tags());
+  }
+  auto cut_mesh = to_dolfinx(comm, cut, cap.order);
+  auto resected_mesh = to_dolfinx(comm, resected, cap.order);
+  r.seconds_mesh = since(t0);
+  r.quality_pre = mesh_quality(*pre_mesh.mesh);
+  r.quality_incised = mesh_quality(*cut_mesh.mesh);
+  r.quality_resected = mesh_quality(*resected_mesh.mesh);
+  // Exact cap volume pi H^2 (3 Rs - H) / 3 (full breast), for the balance
+  // kept + resected = cap in the report.
+  const double Rs = meshes::sphere_radius(cap.R, cap.H);
+  r.cap_volume = M_PI * cap.H * cap.H * (3 * Rs - cap.H) / 3;
+
+  OutputDir dir(out, comm);
+  std::filesystem::create_directories(dir.path() / "preop");
+  std::filesystem::create_directories(dir.path() / "postop");
+
+  // 0. The resected tissue: its mesh (with the facet tags) and volume.
+  {
+    Model res(resected_mesh, Constraints{false, false});
+    r.resected_volume_mesh = 2 * res.volume();
+    if (c.flag("output.xdmf"))
+      write_mesh_xdmf(resected_mesh, dir.path() / "resected.xdmf");
+  }
+
+  // 1. Pre-operative breast.
+  t0 = clock_type::now();
+  Model pre(pre_mesh, Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, pre);
+  r.volume_pre = 2 * pre.volume();
+  log::info("surgery: pre-operative postures");
+  // The pre-operative breast is the case's neutral cap: grid sequencing as in
+  // `simulate` (the post-operative body has no coarse counterpart).
+  const auto coarse = make_coarse_start(c, pre);
+  r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, cap.H, 0.0}), c, dir.path() / "preop",
+                         coarse.get());
+  r.seconds_pre = since(t0);
+
+  // 2. Incision and suturing (no gravity), 3. final neutral state.
+  Model post(cut_mesh, Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, post);
+  r.volume_remaining = 2 * post.volume();
+  r.resected_volume = r.volume_pre - r.volume_remaining;
+  log::info("surgery: resected volume {:.1f} cm^3 (full breast); closing the sutures",
+            1e6 * r.resected_volume);
+  write_fields(post, dir.path() / "incised_neutral", c.flag("output.xdmf"), false);
+  r.suture = close_sutures(post, c);
+  write_fields(post, dir.path() / "sutured", c.flag("output.xdmf"), c.flag("output.vtk"));
+  // The new nipple is the material point A (the transposed nipple).
+  r.new_nipple_neutral = ObservableProbe(post, r.incision.A).measure(post).nipple;
+  reset_reference(post);
+  // The knitted faces now hold their sutured (new reference) positions
+  // normal to their planes and still slide: gap = u . n.
+  post.set_parameter("closure", {0.0});
+  write_fields(post, dir.path() / "final_neutral", c.flag("output.xdmf"), false);
+
+  // 4. Post-operative postures from the new reference (sutures stay knitted).
+  t0 = clock_type::now();
+  log::info("surgery: post-operative postures");
+  r.post = solve_postures(post, ObservableProbe(post, r.new_nipple_neutral), c, dir.path() / "postop");
+  r.seconds_post = since(t0);
+
+  write_json(dir.path() / "summary.json", to_json(r), comm);
+  write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
+  // Pictures: each stage's postures, post-op against pre-op, and the 3D page.
+  render_pictures(dir.path() / "preop", {}, comm);
+  render_pictures(dir.path() / "postop", {dir.path() / "preop"}, comm);
+  write_view_page(dir.path() / "postop", dir.path() / "preop", comm);
+  dir.commit();
+  return r;
+}
+
+nlohmann::json to_json(const SurgeryResult& r)
+{
+  nlohmann::json j;
+  const auto& g = r.incision;
+  j["incision"] = {{"A_m", g.A}, {"B_m", g.B}, {"C_m", g.C}, {"D_m", g.D},
+                   {"P1_normal", g.n1}, {"P1_offset_m", g.c1}, {"P2_normal", g.n2}, {"P2_offset_m", g.c2}};
+  j["volume_pre_m3"] = r.volume_pre;
+  j["volume_remaining_m3"] = r.volume_remaining;
+  j["resected_volume_m3"] = r.resected_volume;
+  j["resected_volume_mesh_m3"] = r.resected_volume_mesh;
+  j["cap_volume_m3"] = r.cap_volume;
+  j["mesh_pre"] = to_json(r.quality_pre);
+  j["mesh_incised"] = to_json(r.quality_incised);
+  j["mesh_resected"] = to_json(r.quality_resected);
+  j["new_nipple_neutral_m"] = r.new_nipple_neutral;
+  j["suture"] = {{"max_gap_m", r.suture.max_gap}, {"k_final_Pa_per_m", r.suture.k_final},
+                 {"closure_steps", r.suture.closure.steps},
+                 {"failed_steps", r.suture.closure.failed_steps},
+                 {"newton_iterations", r.suture.closure.newton_iterations},
+                 {"penalty_raises", r.suture.penalty_raises}, {"wall_time_s", r.suture.seconds}};
+  j["wall_time_s"] = {{"meshing", r.seconds_mesh}, {"preop", r.seconds_pre},
+                      {"suturing", r.suture.seconds}, {"postop", r.seconds_post}};
+  j["preop"] = nlohmann::json::array();
+  for (const auto& p : r.pre)
+    j["preop"].push_back(to_json(p));
+  j["postop"] = nlohmann::json::array();
+  for (const auto& p : r.post)
+    j["postop"].push_back(to_json(p));
+  return j;
+}
+
+std::string surgery_table(const SurgeryResult& r)
+{
+  std::string s = fmt::format("resected volume {:.1f} cm^3 (of {:.1f}; resected-tissue mesh {:.1f} cm^3), "
+                              "largest suture gap {:.4f} mm, suture stiffness {:.3g} Pa/m\n",
+                              1e6 * r.resected_volume, 1e6 * r.volume_pre, 1e6 * r.resected_volume_mesh,
+                              1e3 * r.suture.max_gap, r.suture.k_final);
+  s += fmt::format("{:<12} {:>22} {:>22} {:>9} {:>9} {:>9} {:>9}\n", "posture", "nipple pre y,z [mm]",
+                   "nipple post y,z [mm]", "proj pre", "proj post", "zmin pre", "zmin post");
+  for (std::size_t i = 0; i < r.pre.size() && i < r.post.size(); ++i)
+  {
+    const auto &a = r.pre[i].observables, &b = r.post[i].observables;
+    s += fmt::format("{:<12} {:>10.2f},{:>10.2f} {:>10.2f},{:>10.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f}\n",
+                     r.pre[i].posture.name, 1e3 * a.nipple[1], 1e3 * a.nipple[2], 1e3 * b.nipple[1],
+                     1e3 * b.nipple[2], 1e3 * a.projection, 1e3 * b.projection, 1e3 * a.z_min,
+                     1e3 * b.z_min);
+  }
+  return s;
+}
+} // namespace breastsim

@@ -1,0 +1,50 @@
+#pragma once
+// Breast reduction surgery (SPEC.md): pre-operative postures, incision by the
+// planes P1 and P2 with remeshing, suturing (knitting conditions) without
+// gravity, the final neutral state (stresses reset), and the post-operative
+// postures from it.
+#include "incision.hpp"
+#include "simulate.hpp"
+
+namespace breastsim
+{
+struct SutureReport
+{
+  double max_gap = 0;       ///< largest distance of a suture node to its plane [m]
+  double k_final = 0;       ///< penalty stiffness reached [Pa/m]
+  LoadPathReport closure;   ///< closure stepping
+  int penalty_raises = 0;
+  double seconds = 0;
+};
+
+struct SurgeryResult
+{
+  meshes::IncisionGeometry incision;
+  double volume_pre = 0;        ///< neutral volume before surgery, full breast [m^3]
+  double volume_remaining = 0;  ///< neutral volume of the remaining body, full breast [m^3]
+  double resected_volume = 0;   ///< full breast [m^3]: volume_pre - volume_remaining
+  double resected_volume_mesh = 0; ///< full breast [m^3], from the mesh of the resected part
+  double cap_volume = 0;        ///< exact volume of the neutral cap, full breast [m^3]
+  MeshQuality quality_pre, quality_incised, quality_resected;
+  std::array<double, 3> new_nipple_neutral{}; ///< A after suturing (new reference)
+  SutureReport suture;
+  std::vector<PostureResult> pre, post;
+  double seconds_mesh = 0, seconds_pre = 0, seconds_post = 0;
+};
+
+meshes::IncisionSpec incision_spec(const Config& c);
+/// Write a mesh and its facet tags (no field) as XDMF (collective).
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
+
+/// Close the incision of a model whose mesh has the suture tags: closure
+/// stepping without gravity, then the penalty is raised x10 until the
+/// largest gap is at most c's surgery.max_gap. Throws SolveError on failure.
+SutureReport close_sutures(Model& model, const Config& c);
+/// Largest distance of the suture faces' nodes to their target planes.
+double max_suture_gap(const Model& model);
+
+/// The whole surgery job; writes into `out` (replaced only on success).
+SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm);
+std::string surgery_table(const SurgeryResult& r);
+nlohmann::json to_json(const SurgeryResult& r);
+} // namespace breastsim

@@ -1,0 +1,22 @@
+#pragma once
+// Conversion of a root-rank gmsh TaggedMesh into a distributed dolfinx mesh
+// with its facet tags.
+#include "tagged_mesh.hpp"
+#include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/MeshTags.h>
+#include <memory>
+#include <mpi.h>
+
+namespace breastsim
+{
+/// A distributed mesh, its boundary facet tags and the element degree.
+struct TaggedDolfinxMesh
+{
+  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
+  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> facets;
+  int degree = 1;
+};
+
+/// Distribute `m` (data on rank 0 only; `order` must agree on all ranks).
+TaggedDolfinxMesh to_dolfinx(MPI_Comm comm, const meshes::TaggedMesh& m, int order);
+} // namespace breastsim

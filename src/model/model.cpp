@@ -1,0 +1,463 @@
+#include "model.hpp"
+#include "ghosted_assembly.hpp"
+#include "breastsim_registry.hpp"
+#include "errors.hpp"
+#include "composite_form.hpp"
+#include <algorithm>
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/petsc.h>
+#include <dolfinx/mesh/utils.h>
+#include <dolfinx/common/IndexMap.h>
+#include <numeric>
+#include <fmt/format.h>
+#include <limits>
+
+namespace breastsim
+{
+using namespace dolfinx;
+
+namespace
+{
+std::vector<std::int32_t> tagged_facets(const mesh::MeshTags<std::int32_t>& tags, int value)
+{
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < tags.values().size(); ++i)
+    if (tags.values()[i] == value)
+      out.push_back(tags.indices()[i]);
+  return out;
+}
+
+/// Row-major 2D view used by Expression::eval.
+struct Table
+{
+  std::vector<double> data;
+  std::size_t cols;
+  double& operator()(std::size_t i, std::size_t j) { return data[i * cols + j]; }
+};
+} // namespace
+
+Model::Model(TaggedDolfinxMesh mesh, Constraints constraints)
+    : _mesh(std::move(mesh)), _constraints(constraints)
+{
+  auto factory = generated::function_space(_mesh.degree);
+  if (!factory)
+    throw InputError(fmt::format("element order {} is not compiled in (available: 1, 2)",
+                                 _mesh.degree));
+  _V = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(factory, "u", _mesh.mesh));
+  _u = std::make_shared<fem::Function<T>>(_V);
+  _u->name = "displacement";
+
+  for (const auto& p : generated::parameters())
+    _constants[p.name] = std::make_shared<fem::Constant<T>>(std::span<const T>(p.default_value));
+  for (const auto& t : generated::terms())
+    _constants["on_" + t.name] = std::make_shared<fem::Constant<T>>(t.default_on ? 1.0 : 0.0);
+
+  // Constraints: sliding symmetry (u_x = 0 on x = 0) and the optional fixed base.
+  const int tdim = _mesh.mesh->topology().dim();
+  if (_constraints.symmetry)
+  {
+    auto V0 = _V->sub({0});
+    auto facets = tagged_facets(*_mesh.facets, generated::tag("symmetry"));
+    auto dofs = fem::locate_dofs_topological(*V0, tdim - 1, facets);
+    _bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0));
+  }
+  if (_constraints.fixed_base)
+  {
+    auto facets = tagged_facets(*_mesh.facets, generated::tag("base"));
+    auto dofs = fem::locate_dofs_topological(*_V, tdim - 1, facets);
+    _bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(
+        std::vector<T>{0, 0, 0}, std::move(dofs), _V));
+  }
+
+  // Partner fields: their Coefficients must exist before any form is created.
+  for (const auto& p : generated::partners())
+    _partners.push_back(std::make_shared<PartnerField>(p, _V));
+  for (auto& p : _partners)
+  {
+    const std::string& t = p->info().term;
+    p->set_forms(create("partner_residual_" + t, 1), create("partner_jacobian_uw_" + t, 2),
+                 create("partner_jacobian_ww_" + t, 2));
+  }
+
+  _volume = create("volume", 0);
+  forms("");
+}
+
+std::shared_ptr<fem::Form<T>> Model::create(const std::string& name, int rank)
+{
+  ufcx_form* f = generated::form(name, _mesh.degree);
+  if (!f)
+    throw std::logic_error("no compiled form " + name);
+  std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants(_constants.begin(),
+                                                                            _constants.end());
+  std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, _V);
+  std::map<std::string, std::shared_ptr<const fem::Function<T>>> coefficients = {{"u", _u}};
+  for (const auto& p : _partners)
+    coefficients[p->info().coefficient] = p->field();
+  return std::make_shared<fem::Form<T>>(fem::create_form<T>(
+      *f, spaces, coefficients, constants,
+      {{fem::IntegralType::exterior_facet, _mesh.facets.get()}}, _mesh.mesh));
+}
+
+Model::FormSet& Model::forms(const std::string& term)
+{
+  auto it = _forms.find(term);
+  if (it != _forms.end())
+    return it->second;
+  if (!term.empty())
+  {
+    if (!_constants.count("on_" + term))
+      throw InputError("unknown energy term '" + term + "'");
+    FormSet s{create("energy_" + term, 0), create("residual_" + term, 1),
+              create("jacobian_" + term, 2)};
+    return _forms.emplace(term, s).first->second;
+  }
+  // The total Pi = sum_k on_k E_k: the terms' own forms behind their switches.
+  std::vector<SwitchedForm> energy, residual, jacobian;
+  for (const auto& t : generated::terms())
+  {
+    const FormSet& f = forms(t.name);
+    auto on = _constants.at("on_" + t.name);
+    energy.push_back({f.energy, on});
+    residual.push_back({f.residual, on});
+    jacobian.push_back({f.jacobian, on});
+  }
+  const auto* tags = _mesh.facets.get();
+  FormSet s{compose_forms(energy, tags), compose_forms(residual, tags), compose_forms(jacobian, tags)};
+  return _forms.emplace(term, s).first->second;
+}
+
+void Model::set_parameter(const std::string& name, const std::vector<double>& value)
+{
+  auto it = _constants.find(name);
+  if (it == _constants.end() || name.rfind("on_", 0) == 0)
+    throw InputError("unknown model parameter '" + name + "'");
+  if (it->second->value.size() != value.size())
+    throw InputError(fmt::format("parameter '{}' takes {} value(s), got {}", name,
+                                 it->second->value.size(), value.size()));
+  it->second->value.assign(value.begin(), value.end());
+}
+
+std::vector<double> Model::parameter(const std::string& name) const
+{
+  auto it = _constants.find(name);
+  if (it == _constants.end())
+    throw InputError("unknown model parameter '" + name + "'");
+  return {it->second->value.begin(), it->second->value.end()};
+}
+
+std::vector<std::string> Model::parameter_names() const
+{
+  std::vector<std::string> names;
+  for (const auto& p : generated::parameters())
+    names.push_back(p.name);
+  return names;
+}
+
+void Model::set_term(const std::string& term, bool on)
+{
+  auto it = _constants.find("on_" + term);
+  if (it == _constants.end())
+    throw InputError("unknown energy term '" + term + "'");
+  it->second->value = {on ? 1.0 : 0.0};
+}
+
+bool Model::term_on(const std::string& term) const
+{
+  auto it = _constants.find("on_" + term);
+  if (it == _constants.end())
+    throw InputError("unknown energy term '" + term + "'");
+  return it->second->value[0] != 0.0;
+}
+
+std::vector<std::string> Model::term_names() const
+{
+  std::vector<std::string> names;
+  for (const auto& t : generated::terms())
+    names.push_back(t.name);
+  return names;
+}
+
+std::vector<std::int32_t> Model::boundary_nodes(const std::string& tag) const
+{
+  auto facets = tagged_facets(*_mesh.facets, generated::tag(tag));
+  auto nodes = fem::locate_dofs_topological(*_V, 2, facets);
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
+std::int64_t Model::num_dofs() const
+{
+  return _V->dofmap()->index_map->size_global() * _V->dofmap()->index_map_bs();
+}
+
+double Model::partner_weight(const PartnerField& p, const std::string& term) const
+{
+  if (term.empty())
+    return term_on(p.info().term) ? _constants.at("on_" + p.info().term)->value[0] : 0.0;
+  return term == p.info().term ? 1.0 : 0.0;
+}
+
+AffineMap Model::partner_map(const PartnerField& p) const
+{
+  const auto G = parameter(p.info().map_matrix), t = parameter(p.info().map_shift);
+  AffineMap g;
+  std::copy(G.begin(), G.end(), g.begin());
+  std::copy(t.begin(), t.end(), g.begin() + 9);
+  return g;
+}
+
+void Model::update_partners(const std::string& term)
+{
+  for (auto& p : _partners)
+    if (partner_weight(*p, term) != 0.0)
+      p->update(*_u, *_mesh.facets, partner_map(*p));
+}
+
+const PartnerField& Model::partner(const std::string& term)
+{
+  for (auto& p : _partners)
+    if (p->info().term == term)
+    {
+      p->update(*_u, *_mesh.facets, partner_map(*p));
+      return *p;
+    }
+  throw InputError("energy term '" + term + "' has no partner field");
+}
+
+double Model::energy(const std::string& term)
+{
+  update_partners(term);
+  double local = fem::assemble_scalar(*forms(term).energy), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
+  return global;
+}
+
+double Model::volume()
+{
+  double local = fem::assemble_scalar(*_volume), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
+  return global;
+}
+
+double Model::area(const std::string& tag)
+{
+  auto form = create("area_" + tag, 0);
+  double local = fem::assemble_scalar(*form), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
+  return global;
+}
+
+double Model::min_detF()
+{
+  if (!_detF)
+    _detF = std::make_shared<fem::Expression<T>>(fem::create_expression<T>(
+        *generated::detF_expression(_mesh.degree), {{"u", _u}}, {}, _mesh.mesh));
+  const fem::Expression<T>& expr = *_detF;
+  const std::int32_t ncells = _mesh.mesh->topology().index_map(3)->size_local();
+  std::vector<std::int32_t> cells(ncells);
+  std::iota(cells.begin(), cells.end(), 0);
+  const std::size_t npts = expr.X().second[0];
+  Table values{std::vector<double>(ncells * npts), npts};
+  expr.eval(std::span<const std::int32_t>(cells), values);
+  double local = values.data.empty() ? std::numeric_limits<double>::infinity()
+                                     : *std::min_element(values.data.begin(), values.data.end());
+  if (std::isnan(local))
+    local = -std::numeric_limits<double>::infinity();
+  double global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, _mesh.mesh->comm());
+  return global;
+}
+
+void Model::set_displacement(Vec x)
+{
+  Vec ux = la::petsc::create_vector_wrap(*_u->x());
+  if (x != ux)
+    VecCopy(x, ux);
+  VecDestroy(&ux);
+  _u->x()->scatter_fwd();
+}
+
+void Model::assemble_residual(Vec b, const std::string& term)
+{
+  FormSet& f = forms(term);
+  update_partners(term);
+  assemble_ghosted(b, *f.residual);
+  // Partner fields: the chain rule through w = P u, b += on_k P^T E_w.
+  for (auto& p : _partners)
+    if (const double s = partner_weight(*p, term); s != 0.0)
+      p->add_gradient(b, s);
+  // Constrained rows: b = u - g (zero while u satisfies the constraint).
+  set_constrained_entries(b, -1.0);
+}
+
+void Model::constrain_increment(Vec du) const { set_constrained_entries(du, 1.0); }
+
+void Model::constrain_displacement()
+{
+  auto x = _u->x()->mutable_array();
+  for (const auto& bc : _bcs)
+    bc->set(x, 1.0);
+  _u->x()->scatter_fwd();
+}
+
+void Model::set_constrained_entries(Vec b, double scale) const
+{
+  Vec ux = la::petsc::create_vector_wrap(*_u->x());
+  fem::petsc::set_bc(b, _bcs, ux, scale); // b = scale (g - u) on constrained dofs
+  VecDestroy(&ux);
+}
+
+double Model::residual_norm(const std::string& term)
+{
+  Vec b = create_vector();
+  assemble_residual(b, term);
+  PetscReal n;
+  VecNorm(b, NORM_2, &n);
+  VecDestroy(&b);
+  return n;
+}
+
+void Model::assemble_jacobian(Mat A, const std::string& term)
+{
+  FormSet& f = forms(term);
+  update_partners(term);
+  MatZeroEntries(A);
+  // Straight into the CSR values once the pattern of A is known (AIJ; under
+  // MPI ghost rows still through PETSc); otherwise (first assembly) through
+  // PETSc, and the pattern is recorded.
+  const bool fast = _jacobian_adder.matches(A);
+  if (fast)
+  {
+    _jacobian_adder.begin(A, f.jacobian.get()); // same form: replay the offsets
+    fem::assemble_matrix([this](auto rows, auto cols, auto vals)
+                         { _jacobian_adder.add(rows, cols, vals); return 0; },
+                         *f.jacobian, _bcs);
+    _jacobian_adder.end(A);
+  }
+  else
+    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, _bcs);
+  // Partner fields: A += on_k (E_uw P + P^T E_wu + P^T E_ww P), constrained
+  // rows and columns excluded; added before the first final assembly so that
+  // PETSc keeps these entries in the matrix structure. Entries outside the
+  // preallocation (a matrix created while the term was off) are allocated.
+  for (auto& p : _partners)
+  {
+    const double s = partner_weight(*p, term);
+    if (s == 0.0)
+      continue;
+    Mat K = p->hessian_coupling(constrained_markers());
+    MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
+    PetscInt r0, r1;
+    MatGetOwnershipRange(K, &r0, &r1);
+    std::vector<PetscScalar> vals;
+    for (PetscInt r = r0; r < r1; ++r)
+    {
+      PetscInt n;
+      const PetscInt* cols;
+      const PetscScalar* v;
+      MatGetRow(K, r, &n, &cols, &v);
+      vals.assign(v, v + n);
+      for (auto& x : vals)
+        x *= s;
+      MatSetValues(A, 1, &r, n, cols, vals.data(), ADD_VALUES);
+      MatRestoreRow(K, r, &n, &cols, &v);
+    }
+    MatDestroy(&K);
+  }
+  MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *_V, _bcs);
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  if (!fast)
+    _jacobian_adder.record(A);
+}
+
+std::vector<std::int8_t> Model::constrained_markers() const
+{
+  const auto& map = *_V->dofmap()->index_map;
+  std::vector<std::int8_t> marker(3 * (map.size_local() + map.num_ghosts()), 0);
+  for (const auto& bc : _bcs)
+    bc->mark_dofs(marker);
+  return marker;
+}
+
+Mat Model::create_matrix()
+{
+  // The pattern of the Jacobian form, plus (partner fields on) the partner
+  // couplings E_uw P + P^T E_wu + P^T E_ww P: face A's cells with the cells
+  // holding g(X).
+  bool partners = false;
+  for (auto& p : _partners)
+    partners = partners || partner_weight(*p, "") != 0.0;
+  if (partners)
+    update_partners("");
+  la::SparsityPattern pattern = fem::create_sparsity_pattern(*forms("").jacobian);
+  for (auto& p : _partners)
+  {
+    if (partner_weight(*p, "") == 0.0)
+      continue;
+    Mat K = p->hessian_coupling({});
+    PetscInt r0, r1;
+    MatGetOwnershipRange(K, &r0, &r1);
+    for (PetscInt r = r0; r < r1; ++r)
+    {
+      PetscInt n;
+      const PetscInt* cols;
+      MatGetRow(K, r, &n, &cols, nullptr);
+      std::vector<std::int32_t> row = {static_cast<std::int32_t>(r / 3)}, blocks;
+      for (PetscInt k = 0; k < n; ++k)
+        blocks.push_back(static_cast<std::int32_t>(cols[k] / 3));
+      MatRestoreRow(K, r, &n, &cols, nullptr);
+      std::sort(blocks.begin(), blocks.end());
+      blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+      pattern.insert(row, blocks); // serial (partner fields): local = global indices
+    }
+    MatDestroy(&K);
+  }
+  pattern.assemble();
+  Mat A = la::petsc::create_matrix(_mesh.mesh->comm(), pattern, "aij");
+  insert_pattern(A, pattern);
+  _jacobian_adder.record(A); // the first Jacobian already goes straight into the values
+  return A;
+}
+
+void Model::insert_pattern(Mat A, const la::SparsityPattern& pattern) const
+{
+  // Zeros at every entry of the pattern, one block row at a time (global,
+  // sorted columns: PETSc appends instead of searching), then the final
+  // assembly that makes the CSR structure.
+  const auto& graph = pattern.graph();
+  const std::vector<std::int64_t> global_cols = pattern.column_index_map().global_indices();
+  const std::int64_t row0 = pattern.index_map(0)->local_range()[0];
+  const int bs = pattern.block_size(0);
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> zeros;
+  // Owned rows only: assemble() has sent the ghost rows' entries to their owners.
+  const std::int32_t owned = pattern.index_map(0)->size_local();
+  for (std::int32_t i = 0; i < owned; ++i)
+  {
+    auto links = graph.links(i);
+    cols.resize(links.size());
+    for (std::size_t k = 0; k < links.size(); ++k)
+      cols[k] = static_cast<PetscInt>(global_cols[links[k]]);
+    std::sort(cols.begin(), cols.end());
+    zeros.assign(bs * bs * cols.size(), 0.0);
+    const PetscInt row = static_cast<PetscInt>(row0 + i);
+    MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
+                        INSERT_VALUES);
+  }
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+}
+
+Vec Model::create_vector() const
+{
+  return la::petsc::create_vector(*_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
+}
+} // namespace breastsim

@@ -1,0 +1,65 @@
+#include "load_stepping.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include <algorithm>
+#include <dolfinx/la/petsc.h>
+#include <fmt/format.h>
+
+namespace breastsim
+{
+LoadStepOptions load_step_options(const Config& c)
+{
+  LoadStepOptions o;
+  o.initial_step = c.number("solver.initial_load_step");
+  o.min_step = c.number("solver.min_load_step");
+  return o;
+}
+
+LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::string& parameter,
+                            double from, double to, const LoadStepOptions& opt,
+                            const std::string& context, double reference_norm)
+{
+  LoadPathReport rep;
+  newton.invalidate_preconditioner(); // the state may have changed since the last solve
+  auto x = model.displacement()->x()->mutable_array();
+  std::vector<T> saved(x.begin(), x.end());
+  double s = 0, ds = std::min(1.0, opt.initial_step);
+  while (s < 1.0)
+  {
+    const double s_try = std::min(1.0, s + ds);
+    model.set_parameter(parameter, {from + s_try * (to - from)});
+    NewtonReport nr = newton.solve(reference_norm);
+    rep.newton_iterations += nr.iterations;
+    rep.linear_iterations += nr.linear_iterations;
+    if (nr.converged)
+    {
+      ++rep.steps;
+      s = s_try;
+      saved.assign(x.begin(), x.end());
+      log::debug("{}: {} = {:.4g} converged in {} Newton iterations", context, parameter,
+                 from + s * (to - from), nr.iterations);
+      if (nr.iterations <= 6)
+        ds *= opt.growth;
+    }
+    else
+    {
+      ++rep.failed_steps;
+      // Restore the last converged state and cut the step back.
+      std::copy(saved.begin(), saved.end(), x.begin());
+      model.displacement()->x()->scatter_fwd();
+      ds *= 0.5;
+      log::debug("{}: step to {} = {:.4g} failed ({}); cutting back to {:.4g}", context,
+                 parameter, from + s_try * (to - from), nr.message, ds);
+      if (ds < opt.min_step)
+      {
+        model.set_parameter(parameter, {from + s * (to - from)});
+        throw SolveError(fmt::format(
+            "{}: no convergence beyond {} = {:.6g} (fraction {:.4g} of the path) even with "
+            "the smallest step {:.3g}; last failure: {}",
+            context, parameter, from + s_try * (to - from), s_try, opt.min_step, nr.message));
+      }
+    }
+  }
+  return rep;
+}
+} // namespace breastsim

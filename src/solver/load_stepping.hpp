@@ -1,0 +1,35 @@
+#pragma once
+// Continuation in a scalar model parameter (the gravity load factor, a
+// suture penalty, ...) with automatic step cut-back.
+#include "newton.hpp"
+#include <string>
+
+namespace breastsim
+{
+struct LoadStepOptions
+{
+  double initial_step = 1.0; ///< first increment (in parameter units / (to - from))
+  double min_step = 1.0 / 1024;
+  double growth = 2.0;       ///< step growth after an easy success
+};
+
+/// The case's solver.initial_load_step and solver.min_load_step.
+LoadStepOptions load_step_options(const Config& c);
+
+struct LoadPathReport
+{
+  int steps = 0;             ///< accepted steps
+  int failed_steps = 0;      ///< rejected (cut back) attempts
+  int newton_iterations = 0;
+  int linear_iterations = 0;
+};
+
+/// Drive model parameter `parameter` from `from` to `to` (fractions s in
+/// [0, 1] of the path), re-solving with `newton` at each step. A failed step
+/// restores the last converged state and halves the step; below
+/// `min_step` a SolveError naming `context` and the fraction is thrown.
+/// `reference_norm(s)` gives the force scale for the Newton tolerance.
+LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::string& parameter,
+                            double from, double to, const LoadStepOptions& options,
+                            const std::string& context, double reference_norm);
+} // namespace breastsim

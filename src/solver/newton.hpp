@@ -1,0 +1,104 @@
+#pragma once
+// Newton's method for the total energy of a Model: PETSc KSP for the linear
+// systems (MUMPS LU or GMRES + GAMG with the rigid-body near-nullspace, any
+// PETSc option overrides), and a backtracking line search that never accepts
+// an inverted element (det F <= 0) nor an energy increase.
+#include "config.hpp"
+#include "model.hpp"
+#include <petscksp.h>
+#include <string>
+
+namespace breastsim
+{
+struct NewtonOptions
+{
+  std::string linear = "auto";          ///< "direct", "amg" or "auto"
+  std::int64_t direct_max_dofs = 20000;  ///< "auto": direct up to this size
+  /// Smoother of the finest AMG level: "sor" (one symmetric Gauss-Seidel
+  /// sweep, Richardson) or "chebyshev" (GAMG's default, Chebyshev/Jacobi).
+  std::string amg_fine_smoother = "sor";
+  /// Multigrid cycle of the AMG preconditioner: "w" or "v".
+  std::string amg_cycle = "w";
+  double rtol = 1e-9;                   ///< residual tolerance relative to the reference norm
+  double atol = 1e-11;                  ///< absolute residual tolerance [N]
+  int max_iterations = 40;
+  int max_backtracks = 12;              ///< line search halvings
+  /// Keep the preconditioner (LU factors or AMG hierarchy) of an earlier
+  /// Jacobian while the Krylov solver converges quickly with it.
+  bool reuse_preconditioner = true;
+  int reuse_max_iterations = 12;        ///< rebuild when a reused solve needs more
+  /// Inexact Newton: solve J du = -r only to the Eisenstat-Walker forcing
+  /// tolerance eta_k (loose far from the solution, tight near it) instead of
+  /// to linear_rtol at every iteration.
+  bool inexact = true;
+  double forcing_max = 0.3;             ///< loosest linear tolerance eta_max
+};
+
+/// The case's solver.* Newton keys.
+NewtonOptions newton_options(const Config& c);
+
+struct NewtonReport
+{
+  bool converged = false;
+  int iterations = 0;
+  int linear_iterations = 0;
+  double residual_norm = 0;
+  std::string message;
+};
+
+/// Eisenstat-Walker (1996) forcing term, choice 2, for the linear solve of
+/// the Newton iteration with residual norm `rnorm` (previous one `rnorm_prev`,
+/// previous forcing `eta_prev`, Newton tolerance `tol`), within [eta_min,
+/// eta_max]; 0.5 tol / rnorm when the step is predicted to finish, from the
+/// last full step's remainder |r(u + du) - r(u) - J du| (`remainder`; < 0
+/// when unknown).
+double eisenstat_walker_forcing(double rnorm, double rnorm_prev, double eta_prev, double tol,
+                                double eta_min, double eta_max, double remainder = -1);
+
+/// "direct" or "amg": what options.linear means for a problem of `dofs` unknowns.
+std::string resolved_linear_solver(const NewtonOptions& options, std::int64_t dofs);
+
+class NewtonSolver
+{
+public:
+  NewtonSolver(Model& model, NewtonOptions options);
+  ~NewtonSolver();
+  NewtonSolver(const NewtonSolver&) = delete;
+  NewtonSolver& operator=(const NewtonSolver&) = delete;
+
+  /// Solve from the model's current displacement. Converged when
+  /// |r| <= max(atol, rtol * reference_norm). On failure the displacement is
+  /// left at the last accepted iterate.
+  NewtonReport solve(double reference_norm);
+  /// Euclidean norm of the current residual.
+  double residual_norm();
+  /// "direct" or "amg": what the linear solver resolved to.
+  const std::string& linear_solver() const { return _linear; }
+  /// Force a fresh preconditioner at the next linear solve (e.g. when the
+  /// state jumps back to the neutral configuration).
+  void invalidate_preconditioner() { _stale = true; }
+  /// Number of preconditioner set-ups (factorisations / AMG hierarchies).
+  int preconditioner_setups() const { return _setups; }
+
+private:
+  void setup_ksp();
+  /// After an AMG set-up: the cycle (amg_cycle) and the finest level's
+  /// smoother (amg_fine_smoother).
+  void configure_amg_levels();
+  /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
+  /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
+  int linear_solve(double rtol, std::string& msg, bool* indefinite = nullptr);
+  Model& _model;
+  NewtonOptions _opt;
+  std::string _linear;
+  Mat _A = nullptr;
+  Vec _r = nullptr, _du = nullptr, _u0 = nullptr;
+  Vec _lin = nullptr; ///< linear residual -(r + J du) of the current step
+  KSP _ksp = nullptr;
+  bool _stale = true; ///< rebuild the preconditioner at the next solve
+  int _setups = 0;
+  int _fresh_iterations = 1;
+  /// Linear tolerance of an exact Newton step (and the tightest one used).
+  double exact_rtol() const { return _linear == "direct" ? 1e-10 : 1e-8; }
+};
+} // namespace breastsim

@@ -1,0 +1,306 @@
+#include "mms.hpp"
+#include "half_cap.hpp"
+#include "breastsim_registry.hpp"
+#include "errors.hpp"
+#include "mesh_from_gmsh.hpp"
+#include "mesh_quality.hpp"
+#include "nested_mesh.hpp"
+#include "residual_newton.hpp"
+#include "mms_p1.h"
+#include "mms_p2.h"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/petsc.h>
+#include <dolfinx/mesh/utils.h>
+#include <fmt/format.h>
+#include <numeric>
+#include <petscksp.h>
+#include <spdlog/spdlog.h>
+
+namespace breastsim
+{
+using namespace dolfinx;
+using T = PetscScalar;
+
+namespace
+{
+struct MmsForms
+{
+  ufcx_form *residual, *jacobian, *error_l2, *error_h1, *norm_l2, *norm_h1;
+  ufcx_function_space* (*space)(const char*);
+  ufcx_expression* u_ex;
+  ufcx_form *patch_residual, *patch_error_l2, *patch_error_h1;
+};
+
+MmsForms mms_forms(int order)
+{
+  if (order == 1)
+    return {form_mms_p1_mms_residual, form_mms_p1_mms_jacobian, form_mms_p1_mms_error_l2,
+            form_mms_p1_mms_error_h1, form_mms_p1_mms_norm_l2,  form_mms_p1_mms_norm_h1,
+            functionspace_form_mms_p1_mms_residual, expression_mms_p1_u_ex,
+            form_mms_p1_patch_residual, form_mms_p1_patch_error_l2, form_mms_p1_patch_error_h1};
+  if (order == 2)
+    return {form_mms_p2_mms_residual, form_mms_p2_mms_jacobian, form_mms_p2_mms_error_l2,
+            form_mms_p2_mms_error_h1, form_mms_p2_mms_norm_l2,  form_mms_p2_mms_norm_h1,
+            functionspace_form_mms_p2_mms_residual, expression_mms_p2_u_ex,
+            form_mms_p2_patch_residual, form_mms_p2_patch_error_l2, form_mms_p2_patch_error_h1};
+  throw InputError(fmt::format("MMS: element order {} is not compiled in (1, 2)", order));
+}
+
+double sum_all(double local, MPI_Comm comm)
+{
+  double global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+} // namespace
+
+MmsMeshes parse_mms_meshes(const std::string& name)
+{
+  if (name == "nested")
+    return MmsMeshes::nested;
+  if (name == "split")
+    return MmsMeshes::gmsh_split;
+  if (name == "remesh")
+    return MmsMeshes::gmsh_remesh;
+  if (name == "snapped")
+    return MmsMeshes::nested_snapped;
+  throw InputError(fmt::format("--mms-meshes: '{}' is not one of nested, split, remesh, snapped", name));
+}
+
+std::string to_string(MmsMeshes k)
+{
+  switch (k)
+  {
+  case MmsMeshes::nested:
+    return "nested";
+  case MmsMeshes::gmsh_split:
+    return "split";
+  case MmsMeshes::gmsh_remesh:
+    return "remesh";
+  default:
+    return "snapped";
+  }
+}
+
+MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
+                   bool patch, MmsMeshes kind)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const MmsForms uf = mms_forms(order);
+
+  // Mesh: the case's half cap at the requested size and refinement.
+  meshes::HalfCapSpec spec;
+  spec.R = c.number("geometry.R");
+  spec.H = c.number("geometry.H");
+  spec.mesh_size = kind == MmsMeshes::gmsh_remesh ? mesh_size / std::pow(2.0, refinements) : mesh_size;
+  spec.order = (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped) ? 1 : order;
+  spec.refinements = kind == MmsMeshes::gmsh_split ? refinements : 0;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh tm;
+  tm.order = order;
+  if (rank == 0)
+  {
+    tm = meshes::mesh_half_cap(spec, generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"));
+    if (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped)
+    {
+      for (int l = 0; l < refinements; ++l)
+      {
+        tm = refine_red(tm);
+        if (kind == MmsMeshes::nested_snapped)
+          snap_to_cap(tm, spec.R, spec.H, generated::tag("skin"));
+      }
+      if (order == 2)
+        tm = straight_p2(tm);
+    }
+  }
+  TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
+
+  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
+  auto u = std::make_shared<fem::Function<T>>(V);
+
+  // Constants by name: registry defaults, then the case's physics keys.
+  std::map<std::string, std::shared_ptr<fem::Constant<T>>> constants;
+  for (const auto& p : generated::parameters())
+    constants[p.name] = std::make_shared<fem::Constant<T>>(std::span<const T>(p.default_value));
+  for (const auto& k : schema())
+  {
+    if (k.ufl_name.empty() || !constants.count(k.ufl_name))
+      continue;
+    if (k.type == KeyType::number)
+      constants[k.ufl_name]->value = {c.number(k.key)};
+    else
+      constants[k.ufl_name]->value = c.numbers(k.key);
+  }
+  for (const auto& t : generated::terms())
+    constants["on_" + t.name] = std::make_shared<fem::Constant<T>>(
+        (t.name == "tissue" || t.name == "skin" || t.name == "base_springs") ? 1.0 : 0.0);
+  // The plain membrane: the relaxed tension-field energy is only C1.
+  constants.at("skin_tension_only")->value = {0.0};
+
+  std::map<std::string, std::shared_ptr<const fem::Constant<T>>> cmap(constants.begin(),
+                                                                       constants.end());
+  // Partner fields (forms/model.py) belong to terms that are off here: zero.
+  std::map<std::string, std::shared_ptr<const fem::Function<T>>> coefficients = {{"u", u}};
+  for (const auto& p : generated::partners())
+    coefficients[p.coefficient] = std::make_shared<fem::Function<T>>(V);
+  auto create = [&](ufcx_form* f, int rank_)
+  {
+    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
+    return std::make_shared<fem::Form<T>>(fem::create_form<T>(
+        *f, spaces, coefficients, cmap, {{fem::IntegralType::exterior_facet, m.facets.get()}},
+        m.mesh));
+  };
+  auto R = create(patch ? uf.patch_residual : uf.residual, 1), Jf = create(uf.jacobian, 2);
+
+  // Sliding symmetry u_x = 0 on x = 0 (u_ex satisfies it).
+  std::vector<std::shared_ptr<const fem::DirichletBC<T>>> bcs;
+  {
+    auto V0 = V->sub({0});
+    std::vector<std::int32_t> facets;
+    const int sym = generated::tag("symmetry");
+    for (std::size_t i = 0; i < m.facets->values().size(); ++i)
+      if (m.facets->values()[i] == sym)
+        facets.push_back(m.facets->indices()[i]);
+    auto dofs = fem::locate_dofs_topological(*V0, 2, facets);
+    bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0));
+  }
+
+  ResidualNewton newton(R, Jf, u, bcs);
+
+  MmsLevel L;
+  L.refinements = refinements;
+  spdlog::debug("MMS P{} level {}: min dihedral angle {:.2f} deg", order, refinements,
+                mesh_quality(*m.mesh).min_dihedral_deg);
+  // Force scale: |R(0) - R(u_ex)| (u = 0: the full manufactured load).
+  const double r0 = newton.residual_norm();
+  // Newton from the interpolant of u_ex (from u = 0 the
+  // first iterates of the membrane-dominated problem may invert elements);
+  // the converged discrete solution does not depend on the initial guess.
+  if (!patch) // the patch test starts from u = 0
+  {
+    auto e = fem::create_expression<T>(
+        *uf.u_ex, std::map<std::string, std::shared_ptr<const fem::Function<T>>>{},
+        std::map<std::string, std::shared_ptr<const fem::Constant<T>>>{}, m.mesh);
+    u->interpolate(e);
+    auto arr = u->x()->mutable_array();
+    for (const auto& bc : bcs)
+      bc->set(arr, 1.0); // u_x = 0 exactly on the symmetry face
+    u->x()->scatter_fwd();
+  }
+  ResidualNewtonOptions no;
+  no.rtol = 1e-11;
+  no.max_iterations = 30;
+  no.max_halvings = 12;
+  no.step_rtol = 1e-13; // stagnation at round-off with a small residual
+  no.accept_rtol = 1e-8;
+  const auto nr = newton.solve(r0, no, [&](int it, double r) {
+    spdlog::debug("MMS P{} level {}: Newton {} |R| = {:.3e} (rel {:.3e})", order, refinements, it,
+                  r, r / r0);
+  });
+  if (nr.lu_failed)
+    throw SolveError(fmt::format("MMS P{} refinement {}: LU solve failed", order, refinements));
+  L.newton_iterations = nr.iterations;
+  const double r = nr.residual;
+  if (!(r <= 1e-8 * r0))
+    throw SolveError(fmt::format("MMS P{} refinement {}: Newton did not converge (|R|/|R0| = {:.3e})",
+                                 order, refinements, r / r0));
+
+  auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
+  L.error_l2 = std::sqrt(scalar(patch ? uf.patch_error_l2 : uf.error_l2));
+  L.error_h1 = std::sqrt(scalar(patch ? uf.patch_error_h1 : uf.error_h1));
+  L.rel_l2 = L.error_l2 / std::sqrt(scalar(uf.norm_l2));
+  L.rel_h1 = L.error_h1 / std::sqrt(scalar(uf.norm_h1));
+
+  const std::int32_t ncells = m.mesh->topology().index_map(3)->size_local();
+  std::vector<std::int32_t> cells(ncells);
+  std::iota(cells.begin(), cells.end(), 0);
+  const auto hs = mesh::h(*m.mesh, cells, 3);
+  double hloc = hs.empty() ? 0.0 : *std::max_element(hs.begin(), hs.end());
+  MPI_Allreduce(&hloc, &L.h, 1, MPI_DOUBLE, MPI_MAX, comm);
+  L.cells = m.mesh->topology().index_map(3)->size_global();
+  L.min_dihedral_deg = mesh_quality(*m.mesh).min_dihedral_deg;
+  L.dofs = V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
+  L.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return L;
+}
+
+MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI_Comm comm,
+                   MmsMeshes kind)
+{
+  MmsStudy s;
+  s.order = order;
+  s.mesh_size = mesh_size;
+  s.meshes = kind;
+  const double R = c.number("geometry.R"), H = c.number("geometry.H");
+  const double volume = M_PI * H * (3 * R * R + H * H) / 12; // the half cap
+  for (int l = 0; l < levels; ++l)
+  {
+    const double hl = mesh_size / std::pow(2.0, l);
+    s.levels.push_back(solve_mms(c, order, mesh_size, l, comm, false, kind));
+    auto& L = s.levels.back();
+    L.refinements = l;
+    L.mesh_size = hl;
+    L.h_eff = std::cbrt(volume / double(L.cells));
+    spdlog::info("MMS P{} level {} (mesh_size {:g}): {} cells, {} dofs, L2 {:.4e}, H1 {:.4e} ({} "
+                 "Newton, {:.1f} s)",
+                 order, l, hl, L.cells, L.dofs, L.error_l2, L.error_h1, L.newton_iterations,
+                 L.seconds);
+  }
+  for (std::size_t i = 0; i + 1 < s.levels.size(); ++i)
+  {
+    const double dh = std::log(s.levels[i].h_eff / s.levels[i + 1].h_eff);
+    s.order_l2.push_back(std::log(s.levels[i].error_l2 / s.levels[i + 1].error_l2) / dh);
+    s.order_h1.push_back(std::log(s.levels[i].error_h1 / s.levels[i + 1].error_h1) / dh);
+  }
+  return s;
+}
+
+nlohmann::json to_json(const MmsStudy& s)
+{
+  nlohmann::json j;
+  j["element_order"] = s.order;
+  j["mesh_size"] = s.mesh_size;
+  j["meshes"] = to_string(s.meshes);
+  j["expected_order_l2"] = s.order + 1;
+  j["expected_order_h1"] = s.order;
+  for (const auto& L : s.levels)
+    j["levels"].push_back({{"level", L.refinements}, {"mesh_size", L.mesh_size},
+                           {"cells", L.cells}, {"dofs", L.dofs}, {"h_max", L.h},
+                           {"h_eff", L.h_eff}, {"min_dihedral_deg", L.min_dihedral_deg}, {"error_l2", L.error_l2}, {"error_h1", L.error_h1},
+                           {"relative_error_l2", L.rel_l2}, {"relative_error_h1", L.rel_h1},
+                           {"newton_iterations", L.newton_iterations}, {"seconds", L.seconds}});
+  j["order_l2"] = s.order_l2;
+  j["order_h1"] = s.order_h1;
+  return j;
+}
+
+std::string mms_table(const MmsStudy& s)
+{
+  std::string out = fmt::format("MMS P{} ({} meshes from mesh_size {:g} m): expected orders L2 {}, H1 {}\n",
+                                s.order, to_string(s.meshes), s.mesh_size, s.order + 1, s.order);
+  out += fmt::format("{:>5} {:>8} {:>8} {:>10} {:>12} {:>12} {:>8} {:>8}\n", "level", "cells",
+                     "dofs", "h_eff[mm]", "L2 error", "H1 error", "p(L2)", "p(H1)");
+  for (std::size_t i = 0; i < s.levels.size(); ++i)
+  {
+    const auto& L = s.levels[i];
+    std::string pl = i ? fmt::format("{:.3f}", s.order_l2[i - 1]) : "-";
+    std::string ph = i ? fmt::format("{:.3f}", s.order_h1[i - 1]) : "-";
+    out += fmt::format("{:>5} {:>8} {:>8} {:>10.3f} {:>12.4e} {:>12.4e} {:>8} {:>8}\n",
+                       L.refinements, L.cells, L.dofs, 1e3 * L.h_eff, L.error_l2, L.error_h1, pl, ph);
+  }
+  return out;
+}
+} // namespace breastsim

@@ -1,0 +1,262 @@
+#include "sphere_bench.hpp"
+#include "tagged_mesh.hpp"
+#include "errors.hpp"
+#include "mesh_from_gmsh.hpp"
+#include "residual_newton.hpp"
+#include "sphere_bench_p1.h"
+#include "sphere_bench_p2.h"
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/la/petsc.h>
+#include <fmt/format.h>
+#include <gmsh.h>
+#include <limits>
+#include <map>
+#include <petscksp.h>
+#include <spdlog/spdlog.h>
+#include <stdexcept>
+
+namespace breastsim
+{
+using namespace dolfinx;
+using T = PetscScalar;
+
+namespace
+{
+// Facet tags of verification/forms/sphere_bench.py.
+constexpr int tag_inner = 1, tag_outer = 2, tag_plane_x = 3; // planes x, y, z: 3, 4, 5
+
+/// Nominal radial stress P_r and hoop stress P_t (see the header).
+std::array<double, 2> nominal_stresses(const SphereBenchSpec& s, double R, double r, double lr)
+{
+  const double lt = r / R, J = lr * lt * lt;
+  return {s.mu * (lr - 1 / lr) + s.lambda * (J - 1) * lt * lt,
+          s.mu * (lt - 1 / lt) + s.lambda * (J - 1) * lr * lt};
+}
+
+/// lambda_r from P_r at (R, r): P_r is increasing in lambda_r (from -inf at
+/// 0+), so Newton safeguarded by bisection.
+double radial_stretch(const SphereBenchSpec& s, double R, double r, double P, double guess)
+{
+  double lo = 1e-8, hi = 1e3, x = guess;
+  for (int it = 0; it < 200; ++it)
+  {
+    const double f = nominal_stresses(s, R, r, x)[0] - P;
+    if (std::abs(f) <= 1e-15 * (s.mu + s.lambda))
+      return x;
+    (f > 0 ? hi : lo) = x;
+    const double lt = r / R;
+    const double df = s.mu * (1 + 1 / (x * x)) + s.lambda * std::pow(lt, 4);
+    double xn = x - f / df;
+    if (!(xn > lo && xn < hi))
+      xn = 0.5 * (lo + hi);
+    if (std::abs(xn - x) <= 1e-15 * x)
+      return xn;
+    x = xn;
+  }
+  return x;
+}
+
+/// Integrate from A with r(A) = a, P_r(A) = -p0; returns (r(B), P_r(B)).
+std::array<double, 2> shoot(const SphereBenchSpec& s, double a, int steps)
+{
+  const double h = (s.B - s.A) / steps;
+  double lr = 1.0;
+  // y = (r, P_r): r' = lambda_r(R, r, P_r), P_r' = -2/R (P_r - P_t).
+  auto f = [&](double R, std::array<double, 2> y) -> std::array<double, 2>
+  {
+    lr = radial_stretch(s, R, y[0], y[1], lr);
+    const auto P = nominal_stresses(s, R, y[0], lr);
+    return {lr, -2 / R * (P[0] - P[1])};
+  };
+  std::array<double, 2> y{a, -s.p0};
+  for (int i = 0; i < steps; ++i)
+  {
+    const double R = s.A + i * h;
+    const auto k1 = f(R, y);
+    const auto k2 = f(R + h / 2, {y[0] + h / 2 * k1[0], y[1] + h / 2 * k1[1]});
+    const auto k3 = f(R + h / 2, {y[0] + h / 2 * k2[0], y[1] + h / 2 * k2[1]});
+    const auto k4 = f(R + h, {y[0] + h * k3[0], y[1] + h * k3[1]});
+    for (int k = 0; k < 2; ++k)
+      y[k] += h / 6 * (k1[k] + 2 * k2[k] + 2 * k3[k] + k4[k]);
+    if (!(y[0] > 0) || !std::isfinite(y[1]))
+      return {y[0], std::numeric_limits<double>::quiet_NaN()};
+  }
+  return y;
+}
+} // namespace
+
+SphereReference sphere_reference(const SphereBenchSpec& s, int steps)
+{
+  // P_r(B) increases with a (a larger inner radius stretches the hoops more):
+  // bisection on a in [lo, hi].
+  double lo = 0.5 * s.A, hi = 4 * s.A;
+  if (!(shoot(s, lo, steps)[1] < 0) || !(shoot(s, hi, steps)[1] > 0))
+    throw std::runtime_error("sphere_reference: no bracket for the inner radius in [A/2, 4A]");
+  for (int it = 0; it < 100 && hi - lo > 1e-15 * s.A; ++it)
+  {
+    const double m = 0.5 * (lo + hi);
+    (shoot(s, m, steps)[1] > 0 ? hi : lo) = m;
+  }
+  SphereReference ref;
+  ref.a = 0.5 * (lo + hi);
+  ref.b = shoot(s, ref.a, steps)[0];
+  return ref;
+}
+
+namespace
+{
+/// The octant A <= |X| <= B, x, y, z >= 0 (rank 0), facets tagged as in
+/// verification/forms/sphere_bench.py.
+meshes::TaggedMesh octant_shell(const SphereBenchSpec& s, int order, double mesh_size)
+{
+  meshes::GmshSession session;
+  namespace occ = gmsh::model::occ;
+  gmsh::vectorpair shell, out;
+  std::vector<gmsh::vectorpair> map;
+  occ::cut({{3, occ::addSphere(0, 0, 0, s.B)}}, {{3, occ::addSphere(0, 0, 0, s.A)}}, shell, map);
+  occ::intersect(shell, {{3, occ::addBox(0, 0, 0, 2 * s.B, 2 * s.B, 2 * s.B)}}, out, map);
+  occ::synchronize();
+  gmsh::vectorpair ents;
+  gmsh::model::getEntities(ents, 3);
+  std::vector<int> vols;
+  for (auto [d, t] : ents)
+    vols.push_back(t);
+  gmsh::model::addPhysicalGroup(3, vols, 1);
+  gmsh::model::getEntities(ents, 2);
+  std::map<int, std::vector<int>> groups;
+  // OCC bounding boxes are padded by the geometric tolerance (~1e-7 m): a
+  // tolerance relative to the radii, not to the mesh size.
+  const double tol = 1e-3 * s.A;
+  for (auto [d, t] : ents)
+  {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(d, t, x0, y0, z0, x1, y1, z1);
+    if (std::abs(x1) < tol)
+      groups[tag_plane_x].push_back(t);
+    else if (std::abs(y1) < tol)
+      groups[tag_plane_x + 1].push_back(t);
+    else if (std::abs(z1) < tol)
+      groups[tag_plane_x + 2].push_back(t);
+    else
+      groups[std::max({x1, y1, z1}) < 0.5 * (s.A + s.B) ? tag_inner : tag_outer].push_back(t);
+  }
+  for (const auto& [tag, faces] : groups)
+    gmsh::model::addPhysicalGroup(2, faces, tag);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * mesh_size);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", mesh_size);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay: deterministic
+  gmsh::option::setNumber("Mesh.Optimize", 1);
+  gmsh::option::setNumber("General.NumThreads", 1);
+  return meshes::extract_tagged_mesh(order, 0);
+}
+
+double sum_all(double local, MPI_Comm comm)
+{
+  double global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+} // namespace
+
+SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double mesh_size,
+                                     MPI_Comm comm, int load_steps)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  if (order != 1 && order != 2)
+    throw InputError(fmt::format("sphere benchmark: element order must be 1 or 2, got {}", order));
+  if (!(s.A > 0 && s.B > s.A && mesh_size > 0 && load_steps >= 1))
+    throw InputError("sphere benchmark: need 0 < A < B, mesh_size > 0, load_steps >= 1");
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh tm;
+  tm.order = order;
+  if (rank == 0)
+    tm = octant_shell(s, order, mesh_size);
+  TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
+
+  auto space = order == 1 ? functionspace_form_sphere_bench_p1_bench_residual
+                          : functionspace_form_sphere_bench_p2_bench_residual;
+  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(space, "u", m.mesh));
+  auto u = std::make_shared<fem::Function<T>>(V);
+  auto mu = std::make_shared<fem::Constant<T>>(s.mu);
+  auto lmbda = std::make_shared<fem::Constant<T>>(s.lambda);
+  auto p0 = std::make_shared<fem::Constant<T>>(0.0);
+  const std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants{
+      {"mu", mu}, {"lmbda", lmbda}, {"p0", p0}};
+  auto create = [&](ufcx_form* f, int rank_)
+  {
+    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
+    return std::make_shared<fem::Form<T>>(fem::create_form<T>(
+        *f, spaces, {{"u", u}}, constants, {{fem::IntegralType::exterior_facet, m.facets.get()}},
+        m.mesh));
+  };
+  auto R = create(order == 1 ? form_sphere_bench_p1_bench_residual : form_sphere_bench_p2_bench_residual, 1);
+  auto Jf = create(order == 1 ? form_sphere_bench_p1_bench_jacobian : form_sphere_bench_p2_bench_jacobian, 2);
+
+  // Sliding symmetry: u_i = 0 on the plane x_i = 0.
+  std::vector<std::shared_ptr<const fem::DirichletBC<T>>> bcs;
+  for (int i = 0; i < 3; ++i)
+  {
+    auto Vi = V->sub({i});
+    std::vector<std::int32_t> facets;
+    for (std::size_t k = 0; k < m.facets->values().size(); ++k)
+      if (m.facets->values()[k] == tag_plane_x + i)
+        facets.push_back(m.facets->indices()[k]);
+    auto dofs = fem::locate_dofs_topological(*Vi, 2, facets);
+    bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), Vi));
+  }
+
+  ResidualNewton newton(R, Jf, u, bcs);
+
+  SphereBenchResult res;
+  p0->value = {s.p0};
+  const double r_load = newton.residual_norm(); // |R(0)| at the full pressure: the force scale
+  for (int step = 1; step <= load_steps; ++step)
+  {
+    p0->value = {s.p0 * step / load_steps};
+    ResidualNewtonOptions no;
+    no.rtol = 1e-11;
+    no.max_iterations = 40;
+    no.max_halvings = 20;
+    const auto nr = newton.solve(r_load, no, [&](int it, double r) {
+      spdlog::debug("sphere bench P{} load {}/{}: Newton {} |R| / |R_load| = {:.3e}", order, step,
+                    load_steps, it, r / r_load);
+    });
+    res.newton_iterations += nr.iterations;
+    if (nr.lu_failed || !(nr.residual <= 1e-11 * r_load))
+      throw SolveError(fmt::format("sphere benchmark P{}: Newton did not converge at load step {} "
+                                   "(|R| / |R_load| = {:.3e}{})",
+                                   order, step, nr.residual / r_load,
+                                   nr.lu_failed ? "; the LU solve failed" : ""));
+  }
+
+  auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
+  if (order == 1)
+  {
+    res.u_inner = scalar(form_sphere_bench_p1_bench_ur_inner) / scalar(form_sphere_bench_p1_bench_area_inner);
+    res.u_outer = scalar(form_sphere_bench_p1_bench_ur_outer) / scalar(form_sphere_bench_p1_bench_area_outer);
+  }
+  else
+  {
+    res.u_inner = scalar(form_sphere_bench_p2_bench_ur_inner) / scalar(form_sphere_bench_p2_bench_area_inner);
+    res.u_outer = scalar(form_sphere_bench_p2_bench_ur_outer) / scalar(form_sphere_bench_p2_bench_area_outer);
+  }
+  res.cells = m.mesh->topology().index_map(3)->size_global();
+  res.dofs = V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+} // namespace breastsim

@@ -1,0 +1,46 @@
+#pragma once
+// Reference benchmark (issue 5): a thick-walled sphere A <= |X| <= B of the
+// compressible neo-Hookean tissue (paper eq. 5), inflated by a dead inner
+// pressure p0 (nominal traction), outer surface free. The radially symmetric
+// solution r(R) of the same energy is integrated as an ODE (sphere_reference)
+// and compared with the finite-element solution on an octant of the shell
+// (solve_sphere_bench, verification/forms/sphere_bench.py). docs/VERIFICATION.md.
+#include <cstdint>
+#include <mpi.h>
+
+namespace breastsim
+{
+struct SphereBenchSpec
+{
+  double A = 0.01, B = 0.02;     ///< inner / outer reference radius [m]
+  double mu = 400, lambda = 8000; ///< tissue moduli [Pa] (the model's defaults)
+  double p0 = 400;               ///< nominal inner pressure [Pa]
+};
+
+/// Deformed inner and outer radii a = r(A), b = r(B) of the radial solution:
+///   lambda_r = r', lambda_t = r / R, J = lambda_r lambda_t^2,
+///   P_r = mu (lambda_r - 1/lambda_r) + lambda (J - 1) lambda_t^2,
+///   P_t = mu (lambda_t - 1/lambda_t) + lambda (J - 1) lambda_r lambda_t,
+///   dP_r/dR + 2/R (P_r - P_t) = 0,  P_r(A) = -p0,  P_r(B) = 0,
+/// integrated in (r, P_r) by classical RK4 with `steps` steps, shooting on
+/// a (bisection). Throws std::runtime_error if no bracket is found.
+struct SphereReference
+{
+  double a = 0, b = 0;
+};
+SphereReference sphere_reference(const SphereBenchSpec& s, int steps = 4000);
+
+struct SphereBenchResult
+{
+  std::int64_t cells = 0, dofs = 0;
+  double u_inner = 0, u_outer = 0; ///< mean radial displacement on the inner / outer surface [m]
+  int newton_iterations = 0;       ///< total over the load steps
+  double seconds = 0;
+};
+
+/// The octant mesh of the shell by gmsh (target size mesh_size; P2:
+/// curved 10-node cells), symmetry planes sliding, the pressure applied in
+/// `load_steps` equal increments, Newton (LU) at each. Collective.
+SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double mesh_size,
+                                     MPI_Comm comm, int load_steps = 4);
+} // namespace breastsim
