@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Missing-physics diagnosis on concealed data (issue 7): for every hidden
+# Missing-physics diagnosis on concealed data: for every hidden
 # candidate (and the no-effect control) and every seed, a recording is made
 # by `breastsim record` on a finer mesh, then `breastsim diagnose` names what
 # it finds. Writes bench/results/diagnose/<hidden>_<seed>/ and a summary

@@ -12,7 +12,9 @@
 #
 # Usage: bash bench/edit_loop.sh [REPEATS] [SCRATCH_DIR]
 #   REPEATS default 3; SCRATCH_DIR default a new mktemp folder (removed at
-#   the end unless KEEP_SCRATCH=1). CHECK=1: also fail (exit 1) unless the
+#   the end unless KEEP_SCRATCH=1). BUILD=DIR: instead of a scratch copy,
+#   edit this checkout in place with its existing build DIR (the edits are
+#   undone at the end, also on failure; the tree must be clean in forms/). CHECK=1: also fail (exit 1) unless the
 #   add loop compiled only the new term's kernels and the registry, the new
 #   keys are listed by `breastsim keys`, and the pressure moves the nipple.
 set -euo pipefail
@@ -20,16 +22,27 @@ here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/.." && pwd)"
 repeats="${1:-3}"
 scratch="${2:-$(mktemp -d /tmp/breastsim-edit-loop.XXXXXX)}"
-src="$scratch/src"
-build="$scratch/build"
 out="$scratch/results"
-cleanup() { git -C "$repo" worktree remove --force "$src" >/dev/null 2>&1 || true
-            [ "${KEEP_SCRATCH:-0}" = 1 ] || rm -rf "$scratch"; }
-trap cleanup EXIT
-
-git -C "$repo" worktree add --detach "$src" HEAD >/dev/null
-echo "edit loop: scratch $scratch; initial build (not timed) ..."
-cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+if [ -n "${BUILD:-}" ]; then
+  src="$repo"
+  build="$(cd "$BUILD" && pwd)"
+  git -C "$repo" diff --quiet -- forms || { echo "edit loop: forms/ has uncommitted changes"; exit 2; }
+  cleanup() { git -C "$repo" checkout -- forms/skin.py forms/registry.py
+              rm -f "$repo/forms/skin_pressure.py"
+              cmake --build "$build" -j "$(nproc)" --target breastsim >/dev/null 2>&1 || true
+              [ "${KEEP_SCRATCH:-0}" = 1 ] || rm -rf "$scratch"; }
+  trap cleanup EXIT
+  echo "edit loop: in place, build $build; bringing it up to date (not timed) ..."
+else
+  src="$scratch/src"
+  build="$scratch/build"
+  cleanup() { git -C "$repo" worktree remove --force "$src" >/dev/null 2>&1 || true
+              [ "${KEEP_SCRATCH:-0}" = 1 ] || rm -rf "$scratch"; }
+  trap cleanup EXIT
+  git -C "$repo" worktree add --detach "$src" HEAD >/dev/null
+  echo "edit loop: scratch $scratch; initial build (not timed) ..."
+  cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+fi
 cmake --build "$build" -j "$(nproc)" --target breastsim >/dev/null
 
 # rebuild LOG: time the incremental build of breastsim, log what it compiled.

@@ -1,4 +1,4 @@
-// Reference benchmark (issue 5, docs/VERIFICATION.md): thick-walled sphere
+// Reference benchmark (docs/VERIFICATION.md): thick-walled sphere
 // A = 10 mm, B = 20 mm of the default tissue (mu 400 Pa, lambda 8000 Pa)
 // under a dead inner pressure p0 = mu (inner radius +29 %): the
 // finite-element octant (verification/forms/sphere_bench.py) against the radially

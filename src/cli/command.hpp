@@ -20,7 +20,7 @@ Command add_measure_command(CLI::App& root);
 Command add_view_command(CLI::App& root);
 Command add_surgery_command(CLI::App& root);
 Command add_sweep_command(CLI::App& root);
-Command add_converge_command(CLI::App& root); // issue 5 (converge_command.cpp)
-Command add_record_command(CLI::App& root);   // issue 7 (record_command.cpp)
-Command add_diagnose_command(CLI::App& root); // issue 7 (diagnose_command.cpp)
+Command add_converge_command(CLI::App& root); // converge_command.cpp
+Command add_record_command(CLI::App& root);   // record_command.cpp
+Command add_diagnose_command(CLI::App& root); // diagnose_command.cpp
 } // namespace breastsim::cli

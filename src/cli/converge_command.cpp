@@ -6,31 +6,15 @@
 // manufactured-solution verification (L2/H1 error orders). docs/CONVERGENCE.md.
 #include "config.hpp"
 #include "convergence.hpp"
-#include "errors.hpp"
 #include "log.hpp"
-#include "mms.hpp"
-#include "output.hpp"
+#include "strings.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 namespace breastsim::cli
 {
-namespace
-{
-std::vector<std::string> split(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty())
-      out.push_back(item);
-  return out;
-}
-} // namespace
 
 Command add_converge_command(CLI::App& root)
 {
@@ -76,61 +60,21 @@ Command add_converge_command(CLI::App& root)
   return {app, [o]()
           {
             Config c = load_case(o->case_file, o->sets);
-            std::vector<int> orders;
-            for (const auto& s : split(o->orders))
-            {
-              try
-              {
-                orders.push_back(std::stoi(s));
-              }
-              catch (const std::exception&)
-              {
-                throw InputError("--order: not an integer: '" + s + "'");
-              }
-              if (orders.back() != 1 && orders.back() != 2)
-                throw InputError("--order: element order must be 1 or 2, got " + s);
-            }
+            ConvergeRequest r;
+            r.levels = o->levels;
+            r.orders = parse_orders(o->orders);
+            r.quantities = split_list(o->quantities);
+            r.mms = o->mms;
+            r.mms_meshes = parse_mms_meshes(o->mms_meshes);
+            r.stage = o->stage == "surgery" ? ConvergeStage::surgery : ConvergeStage::preop;
+            r.refine = o->refine == "red" ? ConvergeRefinement::red : ConvergeRefinement::gmsh;
             const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-convergence",
                                           {o->case_file});
-            nlohmann::json j;
-            j["case"] = c.text("case.name");
-            j["levels"] = o->levels;
-            j["stage"] = o->mms ? "mms" : o->stage;
-            std::string report;
-            const MmsMeshes mms_meshes = parse_mms_meshes(o->mms_meshes);
-            if (o->mms)
-            {
-              for (int p : orders)
-              {
-                auto s = mms_study(c, p, c.number("geometry.mesh_size"), o->levels, MPI_COMM_WORLD,
-                                   mms_meshes);
-                j["mms"].push_back(to_json(s));
-                report += mms_table(s);
-              }
-            }
-            else
-            {
-              auto studies = converge_case(c, o->levels, orders, split(o->quantities), MPI_COMM_WORLD,
-                                           o->stage == "surgery" ? ConvergeStage::surgery
-                                                                 : ConvergeStage::preop,
-                                           o->refine == "red" ? ConvergeRefinement::red
-                                                              : ConvergeRefinement::gmsh);
-              for (const auto& s : studies)
-              {
-                j["studies"].push_back(to_json(s));
-                report += convergence_table(s);
-              }
-            }
-            OutputDir dir(out, MPI_COMM_WORLD);
-            write_json(dir.path() / "convergence.json", j, MPI_COMM_WORLD);
-            write_text(dir.path() / "convergence.txt", report, MPI_COMM_WORLD);
-            bool png = false;
-            if (log::is_root())
-              png = plot_convergence(dir.path() / "convergence.json", dir.path() / "convergence.png");
-            dir.commit();
+            const ConvergeReport report = run_convergence(c, r, out, MPI_COMM_WORLD);
+            const bool png = report.plotted;
             if (log::is_root())
             {
-              std::cout << report;
+              std::cout << report.table;
               std::cout << "results written to " << out.path().string() << "/ (convergence.json, convergence.txt"
                         << (png ? ", convergence.png" : "; no plot: python3/matplotlib failed")
                         << ")\n";

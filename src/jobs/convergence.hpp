@@ -1,10 +1,11 @@
 #pragma once
-// Mesh-convergence studies (issue 5): a case solved on uniformly refined
+// Mesh-convergence studies: a case solved on uniformly refined
 // meshes (geometry.refinements = 0 .. N-1, refinement ratio r = 2), per
 // quantity the observed order, the Richardson-extrapolated value and Roache's
 // Grid Convergence Index of the finest level; optionally the MMS problem.
 #include "config.hpp"
 #include "mms.hpp"
+#include "output_target.hpp"
 #include <filesystem>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -86,4 +87,29 @@ std::string convergence_table(const ConvergenceStudy& s);
 /// |q - q_ext| (or the MMS errors) against the mesh level. Returns false (and
 /// leaves no PNG) if python3/matplotlib fail.
 bool plot_convergence(const std::filesystem::path& json, const std::filesystem::path& png);
+/// What `converge` is asked for.
+struct ConvergeRequest
+{
+  int levels = 3;
+  std::vector<int> orders{1};
+  std::vector<std::string> quantities;
+  bool mms = false; ///< the manufactured-solution problem instead of the case's posture
+  MmsMeshes mms_meshes = MmsMeshes::nested;
+  ConvergeStage stage = ConvergeStage::preop;
+  ConvergeRefinement refine = ConvergeRefinement::gmsh;
+};
+
+/// Element orders from a list like "1,2"; InputError naming --order otherwise.
+std::vector<int> parse_orders(const std::string& text);
+
+struct ConvergeReport
+{
+  std::string table;    ///< the studies' tables, as printed
+  bool plotted = false; ///< convergence.png written (python3 + matplotlib worked)
+};
+
+/// The `converge` job: run the studies and write convergence.json,
+/// convergence.txt and convergence.png into `out` (replaced only on success).
+ConvergeReport run_convergence(const Config& c, const ConvergeRequest& r, const OutputTarget& out,
+                               MPI_Comm comm);
 } // namespace breastsim

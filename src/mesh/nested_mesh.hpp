@@ -1,6 +1,6 @@
 #pragma once
 // Nested uniform refinement of a tagged P1 tetrahedral mesh, without moving
-// any node (issue 5, verification): every tetrahedron is split into 8 by its
+// any node (verification): every tetrahedron is split into 8 by its
 // edge midpoints (Bey's red refinement, inner octahedron cut along its
 // shortest diagonal), every tagged boundary triangle into 4 with its tag. The
 // domain is exactly the coarse polyhedron at every level and h halves

@@ -128,147 +128,185 @@ double project_to_reference_tetrahedron(std::span<double, 3> X)
   return std::sqrt(d2);
 }
 
-PointLocation locate_points(const dolfinx::mesh::Mesh& mesh, std::span<const double> points)
+namespace
 {
-  namespace geo = dolfinx::geometry;
-  const auto& geometry = mesh.geometry();
-  const auto& x_dofmap = geometry.dofmap();
-  const auto xg = geometry.x();
-  const auto& cmap = geometry.cmap();
-  const std::int32_t ncells = mesh.topology().index_map(3)->size_local();
-  const std::size_t num_nodes = x_dofmap.num_links(0);
-
-  // Coordinates of every cell's geometry nodes, and the padding of the
-  // vertices' bounding boxes: a curved face bulges out of its vertices' box
-  // by at most its sagitta, far less than an eighth of the cell's size; and
-  // points just outside the mesh (a finer mesh's skin nodes) still find the
-  // cells next to them as candidates.
-  std::vector<double> nodes(static_cast<std::size_t>(ncells) * num_nodes * 3);
+/// Every local cell's geometry nodes (coordinates, cell-major), the largest
+/// cell extent, and whether each cell's geometry is affine.
+struct CellNodes
+{
+  std::vector<double> x;
+  std::size_t per_cell = 0;
   double size = 0;
+  std::vector<char> affine;
+  std::span<const double> cell(std::int32_t c) const
+  {
+    return std::span<const double>(x.data() + c * per_cell * 3, per_cell * 3);
+  }
+  std::int32_t num_cells() const { return static_cast<std::int32_t>(affine.size()); }
+};
+
+CellNodes gather_cell_nodes(const dolfinx::mesh::Mesh& mesh)
+{
+  const auto& x_dofmap = mesh.geometry().dofmap();
+  const auto xg = mesh.geometry().x();
+  const std::int32_t ncells = mesh.topology().index_map(3)->size_local();
+  CellNodes g;
+  g.per_cell = x_dofmap.num_links(0);
+  g.x.resize(static_cast<std::size_t>(ncells) * g.per_cell * 3);
+  g.affine.assign(ncells, 1);
   for (std::int32_t c = 0; c < ncells; ++c)
   {
     auto dofs = x_dofmap.links(c);
     std::array<double, 3> lo = {1e300, 1e300, 1e300}, hi = {-1e300, -1e300, -1e300};
-    for (std::size_t i = 0; i < num_nodes; ++i)
+    for (std::size_t i = 0; i < g.per_cell; ++i)
       for (int d = 0; d < 3; ++d)
       {
         const double v = xg[3 * dofs[i] + d];
-        nodes[(c * num_nodes + i) * 3 + d] = v;
+        g.x[(c * g.per_cell + i) * 3 + d] = v;
         lo[d] = std::min(lo[d], v);
         hi[d] = std::max(hi[d], v);
       }
-    size = std::max({size, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    g.size = std::max({g.size, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   }
-  auto cell_nodes = [&](std::int32_t c)
-  { return std::span<const double>(nodes.data() + c * num_nodes * 3, num_nodes * 3); };
+  return g;
+}
 
-  // Whether each cell's geometry is affine: every edge node at its edge's
-  // midpoint (a P2 mesh's interior cells; only cells on the curved skin are
-  // not), where the vertices' affine pull-back is exact.
-  std::vector<char> affine(ncells, 1);
-  if (!cmap.is_affine())
+/// Mark the cells whose geometry is not affine: an edge node off its edge's
+/// midpoint (a P2 mesh's cells on the curved skin). In affine cells the
+/// vertices' affine pull-back is exact.
+void mark_curved_cells(CellNodes& g, const dolfinx::fem::CoordinateElement& cmap)
+{
+  if (cmap.is_affine())
+    return;
+  const double tol = 1e-10 * g.size;
+  const auto layout = cmap.create_dof_layout();
+  const auto v = dolfinx::mesh::get_entity_vertices(dolfinx::mesh::CellType::tetrahedron, 1);
+  for (std::int32_t c = 0; c < g.num_cells(); ++c)
   {
-    const double tol = 1e-10 * size;
-    const auto layout = cmap.create_dof_layout();
-    const auto v = dolfinx::mesh::get_entity_vertices(dolfinx::mesh::CellType::tetrahedron, 1);
-    for (std::int32_t c = 0; c < ncells; ++c)
+    auto nc = g.cell(c);
+    for (int e = 0; e < 6 && g.affine[c]; ++e)
+      for (int node : layout.entity_dofs(1, e))
+        for (int d = 0; d < 3; ++d)
+          if (std::abs(nc[3 * node + d] - 0.5 * (nc[3 * v.links(e)[0] + d] + nc[3 * v.links(e)[1] + d]))
+              > tol)
+            g.affine[c] = 0;
+  }
+}
+
+/// The best cell found for one point: its reference point X and the gap,
+/// how far X lies outside the reference tetrahedron (0: inside).
+struct Found
+{
+  std::int32_t cell = -1;
+  std::array<double, 3> X = {0.25, 0.25, 0.25};
+  double gap = std::numeric_limits<double>::infinity();
+  void consider(std::int32_t c, const std::array<double, 3>& Xc)
+  {
+    if (const double o = outside(Xc); o < gap)
     {
-      auto nc = cell_nodes(c);
-      for (int e = 0; e < 6 && affine[c]; ++e)
-      {
-        const auto& edge_nodes = layout.entity_dofs(1, e);
-        for (int node : edge_nodes)
-          for (int d = 0; d < 3; ++d)
-            if (std::abs(nc[3 * node + d] - 0.5 * (nc[3 * v.links(e)[0] + d] + nc[3 * v.links(e)[1] + d])) > tol)
-              affine[c] = 0;
-      }
+      gap = o;
+      X = Xc;
+      cell = c;
     }
   }
+};
 
-  std::vector<std::int32_t> all(ncells);
+/// Affine candidates first (exact and cheap), then the curved ones in the
+/// order of their affine estimate, by Newton, until one holds x.
+Found search_candidates(const CellNodes& g, const dolfinx::fem::CoordinateElement& cmap,
+                        std::span<const std::int32_t> candidates, std::span<const double, 3> x)
+{
+  Found f;
+  std::vector<std::pair<double, std::int32_t>> curved; // (affine estimate's outside, cell)
+  for (const std::int32_t c : candidates)
+  {
+    std::array<double, 3> X;
+    if (!affine_pull_back(g.cell(c), x, X))
+      continue;
+    if (g.affine[c])
+    {
+      f.consider(c, X);
+      if (f.gap == 0)
+        return f;
+    }
+    else if (outside(X) <= 0.5)
+      curved.push_back({outside(X), c});
+  }
+  std::sort(curved.begin(), curved.end());
+  for (std::size_t k = 0; k < curved.size() && f.gap > 0; ++k)
+  {
+    std::array<double, 3> X;
+    if (pull_back(cmap, g.cell(curved[k].second), x, X))
+      f.consider(curved[k].second, X);
+  }
+  return f;
+}
+
+/// The cell with the nearest vertex centroid |(x_0 + .. + x_3)/4 - x|, for a
+/// point outside every padded box, with its pull-back if Newton converges.
+Found nearest_cell(const CellNodes& g, const dolfinx::fem::CoordinateElement& cmap,
+                   std::span<const double, 3> x)
+{
+  Found f;
+  double dmin = std::numeric_limits<double>::infinity();
+  for (std::int32_t c = 0; c < g.num_cells(); ++c)
+  {
+    auto nc = g.cell(c);
+    double d2 = 0;
+    for (int d = 0; d < 3; ++d)
+    {
+      const double m = 0.25 * (nc[d] + nc[3 + d] + nc[6 + d] + nc[9 + d]) - x[d];
+      d2 += m * m;
+    }
+    if (d2 < dmin)
+    {
+      dmin = d2;
+      f.cell = c;
+    }
+  }
+  std::array<double, 3> X;
+  if (pull_back(cmap, g.cell(f.cell), x, X))
+    f.X = X;
+  return f;
+}
+} // namespace
+
+PointLocation locate_points(const dolfinx::mesh::Mesh& mesh, std::span<const double> points)
+{
+  const auto& cmap = mesh.geometry().cmap();
+  CellNodes g = gather_cell_nodes(mesh);
+  mark_curved_cells(g, cmap);
+  // Candidates from the vertices' bounding boxes, padded: a curved face
+  // bulges out of its vertices' box by at most its sagitta, far less than
+  // an eighth of the cell's size; and points just outside the mesh (a finer
+  // mesh's skin nodes) still find the cells next to them.
+  std::vector<std::int32_t> all(g.num_cells());
   std::iota(all.begin(), all.end(), 0);
-  geo::BoundingBoxTree tree(mesh, 3, all, size / 8);
-  const auto candidates = geo::compute_collisions(tree, points);
+  dolfinx::geometry::BoundingBoxTree tree(mesh, 3, all, g.size / 8);
+  const auto candidates = dolfinx::geometry::compute_collisions(tree, points);
 
   const std::size_t n = points.size() / 3;
   PointLocation loc;
   loc.cells.assign(n, -1);
   loc.points.assign(points.begin(), points.end());
   loc.reference.assign(3 * n, 0.0);
-  std::vector<std::pair<double, std::int32_t>> curved; // (affine estimate's outside, cell)
   for (std::size_t p = 0; p < n; ++p)
   {
     std::span<const double, 3> x(points.data() + 3 * p, 3);
-    std::array<double, 3> best_X = {0.25, 0.25, 0.25};
-    double best = std::numeric_limits<double>::infinity();
-    std::int32_t best_cell = -1;
-    auto consider = [&](std::int32_t c, const std::array<double, 3>& X)
+    Found f = search_candidates(g, cmap, candidates.links(p), x);
+    if (f.cell < 0)
     {
-      const double o = outside(X);
-      if (o < best)
-      {
-        best = o;
-        best_X = X;
-        best_cell = c;
-      }
-    };
-    // Affine cells first (exact and cheap), then the curved candidates in
-    // the order of their affine estimate, by Newton, until one holds x.
-    curved.clear();
-    for (const std::int32_t c : candidates.links(p))
-    {
-      std::array<double, 3> X;
-      if (!affine_pull_back(cell_nodes(c), x, X))
-        continue;
-      if (affine[c])
-      {
-        consider(c, X);
-        if (best == 0)
-          break;
-      }
-      else if (outside(X) <= 0.5)
-        curved.push_back({outside(X), c});
-    }
-    std::sort(curved.begin(), curved.end());
-    for (std::size_t k = 0; k < curved.size() && best > 0; ++k)
-    {
-      std::array<double, 3> X;
-      if (pull_back(cmap, cell_nodes(curved[k].second), x, X))
-        consider(curved[k].second, X);
-    }
-    if (best_cell < 0)
-    {
-      // Outside every padded box: the cell with the nearest centroid.
       ++loc.far;
-      double dmin = std::numeric_limits<double>::infinity();
-      for (std::int32_t c = 0; c < ncells; ++c)
-      {
-        auto nc = cell_nodes(c);
-        double d2 = 0;
-        for (int d = 0; d < 3; ++d)
-        {
-          const double m = 0.25 * (nc[d] + nc[3 + d] + nc[6 + d] + nc[9 + d]) - x[d];
-          d2 += m * m;
-        }
-        if (d2 < dmin)
-        {
-          dmin = d2;
-          best_cell = c;
-        }
-      }
-      std::array<double, 3> X;
-      best_X = {0.25, 0.25, 0.25};
-      if (pull_back(cmap, cell_nodes(best_cell), x, X))
-        best_X = X;
+      f = nearest_cell(g, cmap, x);
     }
-    loc.cells[p] = best_cell;
-    if (best > 0 && project_to_reference_tetrahedron(best_X) > 0)
+    loc.cells[p] = f.cell;
+    if (f.gap > 0 && project_to_reference_tetrahedron(f.X) > 0)
     {
       ++loc.moved;
-      const auto y = push_forward(cmap, cell_nodes(best_cell), best_X);
+      const auto y = push_forward(cmap, g.cell(f.cell), f.X);
       std::copy(y.begin(), y.end(), loc.points.begin() + 3 * p);
     }
-    std::copy(best_X.begin(), best_X.end(), loc.reference.begin() + 3 * p);
+    std::copy(f.X.begin(), f.X.end(), loc.reference.begin() + 3 * p);
   }
   return loc;
 }

@@ -1,4 +1,4 @@
-"""Residual maps of a breastsim diagnosis (issue 7).
+"""Residual maps of a breastsim diagnosis.
 
 Usage: python3 diagnose_plots.py RESULT_DIR
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hostile-input catalogue (issue 16): malformed input and dangerous output
+# Hostile-input catalogue: malformed input and dangerous output
 # targets. Every case runs inside one scratch folder S; HOME points into it
 # and the working directory is inside it, so no case can reach a real system
 # path (the file-system root is checked on a fake root in test_output_safety).

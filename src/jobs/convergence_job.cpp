@@ -1,0 +1,79 @@
+#include "convergence.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "output.hpp"
+#include "strings.hpp"
+
+namespace breastsim
+{
+std::vector<int> parse_orders(const std::string& text)
+{
+  std::vector<int> orders;
+  for (const auto& s : split_list(text))
+  {
+    std::size_t used = 0;
+    int p = 0;
+    try
+    {
+      p = std::stoi(s, &used);
+    }
+    catch (const std::exception&)
+    {
+      used = 0;
+    }
+    if (used != s.size())
+      throw InputError("--order: not an integer: '" + s + "'");
+    if (p != 1 && p != 2)
+      throw InputError("--order: element order must be 1 or 2, got " + s);
+    orders.push_back(p);
+  }
+  return orders;
+}
+
+namespace
+{
+/// The MMS study of each order, as JSON and tables.
+void run_mms(const Config& c, const ConvergeRequest& r, nlohmann::json& j, std::string& table,
+             MPI_Comm comm)
+{
+  for (int p : r.orders)
+  {
+    auto s = mms_study(c, p, c.number("geometry.mesh_size"), r.levels, comm, r.mms_meshes);
+    j["mms"].push_back(to_json(s));
+    table += mms_table(s);
+  }
+}
+
+/// The case's studies (every order), as JSON and tables.
+void run_case(const Config& c, const ConvergeRequest& r, nlohmann::json& j, std::string& table,
+              MPI_Comm comm)
+{
+  for (const auto& s : converge_case(c, r.levels, r.orders, r.quantities, comm, r.stage, r.refine))
+  {
+    j["studies"].push_back(to_json(s));
+    table += convergence_table(s);
+  }
+}
+} // namespace
+
+ConvergeReport run_convergence(const Config& c, const ConvergeRequest& r, const OutputTarget& out,
+                               MPI_Comm comm)
+{
+  nlohmann::json j;
+  j["case"] = c.text("case.name");
+  j["levels"] = r.levels;
+  j["stage"] = r.mms ? "mms" : (r.stage == ConvergeStage::surgery ? "surgery" : "preop");
+  ConvergeReport report;
+  if (r.mms)
+    run_mms(c, r, j, report.table, comm);
+  else
+    run_case(c, r, j, report.table, comm);
+  OutputDir dir(out, comm);
+  write_json(dir.path() / "convergence.json", j, comm);
+  write_text(dir.path() / "convergence.txt", report.table, comm);
+  if (log::is_root())
+    report.plotted = plot_convergence(dir.path() / "convergence.json", dir.path() / "convergence.png");
+  dir.commit();
+  return report;
+}
+} // namespace breastsim
