@@ -1,4 +1,4 @@
-"""Reference benchmark (issue 5): thick-walled sphere under inner pressure.
+"""Reference benchmark: thick-walled sphere under inner pressure.
 
 An octant of the shell A <= |X| <= B (symmetry planes x = 0, y = 0, z = 0,
 sliding), the production tissue energy of forms/tissue.py (paper eq. 5,
