@@ -6,10 +6,10 @@
 #include "mesh_quality.hpp"
 #include "nested_mesh.hpp"
 #include "residual_newton.hpp"
+#include "timer.hpp"
 #include "mms_p1.h"
 #include "mms_p2.h"
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/Constant.h>
@@ -94,18 +94,19 @@ std::string to_string(MmsMeshes k)
   }
 }
 
-MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
-                   bool patch, MmsMeshes kind)
+namespace
 {
-  const auto t0 = std::chrono::steady_clock::now();
-  const MmsForms uf = mms_forms(order);
-
-  // Mesh: the case's half cap at the requested size and refinement.
+/// The level's mesh: the case's half cap at the requested size and
+/// refinement (built on rank 0, distributed over comm).
+TaggedDolfinxMesh mms_mesh(const Config& c, int order, double mesh_size, int refinements,
+                           MPI_Comm comm, MmsMeshes kind)
+{
+  const bool nested = kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped;
   meshes::HalfCapSpec spec;
   spec.R = c.number("geometry.R");
   spec.H = c.number("geometry.H");
   spec.mesh_size = kind == MmsMeshes::gmsh_remesh ? mesh_size / std::pow(2.0, refinements) : mesh_size;
-  spec.order = (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped) ? 1 : order;
+  spec.order = nested ? 1 : order;
   spec.refinements = kind == MmsMeshes::gmsh_split ? refinements : 0;
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -114,7 +115,7 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   if (rank == 0)
   {
     tm = meshes::mesh_half_cap(spec, generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"));
-    if (kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped)
+    if (nested)
     {
       for (int l = 0; l < refinements; ++l)
       {
@@ -126,13 +127,17 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
         tm = straight_p2(tm);
     }
   }
-  TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
+  return to_dolfinx(comm, tm, order);
+}
 
-  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
-  auto u = std::make_shared<fem::Function<T>>(V);
+using Constants = std::map<std::string, std::shared_ptr<fem::Constant<T>>>;
 
-  // Constants by name: registry defaults, then the case's physics keys.
-  std::map<std::string, std::shared_ptr<fem::Constant<T>>> constants;
+/// The Constants of the forms: registry defaults, then the case's physics
+/// keys; only tissue, skin and base springs on, and the plain membrane (the
+/// relaxed tension-field energy is only C1).
+Constants mms_constants(const Config& c)
+{
+  Constants constants;
   for (const auto& p : generated::parameters())
     constants[p.name] = std::make_shared<fem::Constant<T>>(std::span<const T>(p.default_value));
   for (const auto& k : schema())
@@ -147,64 +152,75 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   for (const auto& t : generated::terms())
     constants["on_" + t.name] = std::make_shared<fem::Constant<T>>(
         (t.name == "tissue" || t.name == "skin" || t.name == "base_springs") ? 1.0 : 0.0);
-  // The plain membrane: the relaxed tension-field energy is only C1.
   constants.at("skin_tension_only")->value = {0.0};
+  return constants;
+}
 
-  std::map<std::string, std::shared_ptr<const fem::Constant<T>>> cmap(constants.begin(),
-                                                                       constants.end());
-  // Partner fields (forms/model.py) belong to terms that are off here: zero.
-  std::map<std::string, std::shared_ptr<const fem::Function<T>>> coefficients = {{"u", u}};
-  for (const auto& p : generated::partners())
-    coefficients[p.coefficient] = std::make_shared<fem::Function<T>>(V);
-  auto create = [&](ufcx_form* f, int rank_)
+/// The forms of the MMS module on V, bound to u and the Constants; the
+/// partner fields (forms/model.py) belong to terms that are off here: zero.
+class MmsFormFactory
+{
+public:
+  MmsFormFactory(std::shared_ptr<const fem::FunctionSpace> V, std::shared_ptr<fem::Function<T>> u,
+                 const Constants& constants, const TaggedDolfinxMesh& m)
+      : _V(std::move(V)), _constants(constants.begin(), constants.end()), _mesh(m)
   {
-    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
+    _coefficients = {{"u", u}};
+    for (const auto& p : generated::partners())
+      _coefficients[p.coefficient] = std::make_shared<fem::Function<T>>(_V);
+  }
+  std::shared_ptr<fem::Form<T>> operator()(ufcx_form* f, int rank) const
+  {
+    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, _V);
     return std::make_shared<fem::Form<T>>(fem::create_form<T>(
-        *f, spaces, coefficients, cmap, {{fem::IntegralType::exterior_facet, m.facets.get()}},
-        m.mesh));
-  };
-  auto R = create(patch ? uf.patch_residual : uf.residual, 1), Jf = create(uf.jacobian, 2);
-
-  // Sliding symmetry u_x = 0 on x = 0 (u_ex satisfies it).
-  std::vector<std::shared_ptr<const fem::DirichletBC<T>>> bcs;
-  {
-    auto V0 = V->sub({0});
-    std::vector<std::int32_t> facets;
-    const int sym = generated::tag("symmetry");
-    for (std::size_t i = 0; i < m.facets->values().size(); ++i)
-      if (m.facets->values()[i] == sym)
-        facets.push_back(m.facets->indices()[i]);
-    auto dofs = fem::locate_dofs_topological(*V0, 2, facets);
-    bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0));
+        *f, spaces, _coefficients, _constants,
+        {{fem::IntegralType::exterior_facet, _mesh.facets.get()}}, _mesh.mesh));
   }
 
-  ResidualNewton newton(R, Jf, u, bcs);
+private:
+  std::shared_ptr<const fem::FunctionSpace> _V;
+  std::map<std::string, std::shared_ptr<const fem::Constant<T>>> _constants;
+  std::map<std::string, std::shared_ptr<const fem::Function<T>>> _coefficients;
+  const TaggedDolfinxMesh& _mesh;
+};
 
-  MmsLevel L;
-  L.refinements = refinements;
-  spdlog::debug("MMS P{} level {}: min dihedral angle {:.2f} deg", order, refinements,
-                mesh_quality(*m.mesh).min_dihedral_deg);
-  // Force scale: |R(0) - R(u_ex)| (u = 0: the full manufactured load).
-  const double r0 = newton.residual_norm();
-  // Newton from the interpolant of u_ex (from u = 0 the
-  // first iterates of the membrane-dominated problem may invert elements);
-  // the converged discrete solution does not depend on the initial guess.
-  if (!patch) // the patch test starts from u = 0
-  {
-    auto e = fem::create_expression<T>(
-        *uf.u_ex, std::map<std::string, std::shared_ptr<const fem::Function<T>>>{},
-        std::map<std::string, std::shared_ptr<const fem::Constant<T>>>{}, m.mesh);
-    u->interpolate(e);
-    auto arr = u->x()->mutable_array();
-    for (const auto& bc : bcs)
-      bc->set(arr, 1.0); // u_x = 0 exactly on the symmetry face
-    u->x()->scatter_fwd();
-  }
+/// Sliding symmetry u_x = 0 on x = 0 (u_ex satisfies it).
+std::shared_ptr<const fem::DirichletBC<T>> symmetry_bc(const fem::FunctionSpace& V,
+                                                       const TaggedDolfinxMesh& m)
+{
+  auto V0 = V.sub({0});
+  std::vector<std::int32_t> facets;
+  const int sym = generated::tag("symmetry");
+  for (std::size_t i = 0; i < m.facets->values().size(); ++i)
+    if (m.facets->values()[i] == sym)
+      facets.push_back(m.facets->indices()[i]);
+  auto dofs = fem::locate_dofs_topological(*V0, 2, facets);
+  return std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0);
+}
+
+/// u = the interpolant of u_ex, with u_x = 0 exactly on the symmetry face.
+void interpolate_exact(fem::Function<T>& u, const ufcx_expression& u_ex, const TaggedDolfinxMesh& m,
+                       const std::vector<std::shared_ptr<const fem::DirichletBC<T>>>& bcs)
+{
+  auto e = fem::create_expression<T>(
+      u_ex, std::map<std::string, std::shared_ptr<const fem::Function<T>>>{},
+      std::map<std::string, std::shared_ptr<const fem::Constant<T>>>{}, m.mesh);
+  u.interpolate(e);
+  auto arr = u.x()->mutable_array();
+  for (const auto& bc : bcs)
+    bc->set(arr, 1.0);
+  u.x()->scatter_fwd();
+}
+
+/// Newton until |R| <= 1e-11 |R0| (or stagnation at round-off below 1e-8
+/// |R0|); the iterations, SolveError if |R| > 1e-8 |R0| at the end.
+int converge(ResidualNewton& newton, double r0, int order, int refinements)
+{
   ResidualNewtonOptions no;
   no.rtol = 1e-11;
   no.max_iterations = 30;
   no.max_halvings = 12;
-  no.step_rtol = 1e-13; // stagnation at round-off with a small residual
+  no.step_rtol = 1e-13;
   no.accept_rtol = 1e-8;
   const auto nr = newton.solve(r0, no, [&](int it, double r) {
     spdlog::debug("MMS P{} level {}: Newton {} |R| = {:.3e} (rel {:.3e})", order, refinements, it,
@@ -212,28 +228,62 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
   });
   if (nr.lu_failed)
     throw SolveError(fmt::format("MMS P{} refinement {}: LU solve failed", order, refinements));
-  L.newton_iterations = nr.iterations;
-  const double r = nr.residual;
-  if (!(r <= 1e-8 * r0))
+  if (!(nr.residual <= 1e-8 * r0))
     throw SolveError(fmt::format("MMS P{} refinement {}: Newton did not converge (|R|/|R0| = {:.3e})",
-                                 order, refinements, r / r0));
+                                 order, refinements, nr.residual / r0));
+  return nr.iterations;
+}
+
+/// The largest cell diameter over all ranks.
+double largest_cell_diameter(const mesh::Mesh& mesh)
+{
+  const std::int32_t ncells = mesh.topology().index_map(3)->size_local();
+  std::vector<std::int32_t> cells(ncells);
+  std::iota(cells.begin(), cells.end(), 0);
+  const auto hs = mesh::h(mesh, cells, 3);
+  double local = hs.empty() ? 0.0 : *std::max_element(hs.begin(), hs.end()), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, mesh.comm());
+  return global;
+}
+} // namespace
+
+MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements, MPI_Comm comm,
+                   bool patch, MmsMeshes kind)
+{
+  Stopwatch stopwatch("MMS level");
+  const MmsForms uf = mms_forms(order);
+  TaggedDolfinxMesh m = mms_mesh(c, order, mesh_size, refinements, comm, kind);
+  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
+  auto u = std::make_shared<fem::Function<T>>(V);
+  const MmsFormFactory create(V, u, mms_constants(c), m);
+  const std::vector<std::shared_ptr<const fem::DirichletBC<T>>> bcs = {symmetry_bc(*V, m)};
+  ResidualNewton newton(create(patch ? uf.patch_residual : uf.residual, 1), create(uf.jacobian, 2),
+                        u, bcs);
+
+  MmsLevel L;
+  L.refinements = refinements;
+  spdlog::debug("MMS P{} level {}: min dihedral angle {:.2f} deg", order, refinements,
+                mesh_quality(*m.mesh).min_dihedral_deg);
+  // Force scale: |R(0) - R(u_ex)| (u = 0: the full manufactured load).
+  const double r0 = newton.residual_norm();
+  // Newton from the interpolant of u_ex (from u = 0 the first iterates of
+  // the membrane-dominated problem may invert elements); the converged
+  // discrete solution does not depend on the initial guess. The patch test
+  // starts from u = 0.
+  if (!patch)
+    interpolate_exact(*u, *uf.u_ex, m, bcs);
+  L.newton_iterations = converge(newton, r0, order, refinements);
 
   auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
   L.error_l2 = std::sqrt(scalar(patch ? uf.patch_error_l2 : uf.error_l2));
   L.error_h1 = std::sqrt(scalar(patch ? uf.patch_error_h1 : uf.error_h1));
   L.rel_l2 = L.error_l2 / std::sqrt(scalar(uf.norm_l2));
   L.rel_h1 = L.error_h1 / std::sqrt(scalar(uf.norm_h1));
-
-  const std::int32_t ncells = m.mesh->topology().index_map(3)->size_local();
-  std::vector<std::int32_t> cells(ncells);
-  std::iota(cells.begin(), cells.end(), 0);
-  const auto hs = mesh::h(*m.mesh, cells, 3);
-  double hloc = hs.empty() ? 0.0 : *std::max_element(hs.begin(), hs.end());
-  MPI_Allreduce(&hloc, &L.h, 1, MPI_DOUBLE, MPI_MAX, comm);
+  L.h = largest_cell_diameter(*m.mesh);
   L.cells = m.mesh->topology().index_map(3)->size_global();
   L.min_dihedral_deg = mesh_quality(*m.mesh).min_dihedral_deg;
   L.dofs = V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
-  L.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  L.seconds = stopwatch.seconds();
   return L;
 }
 

@@ -10,7 +10,7 @@
 #include <dolfinx/fem/Function.h>
 #include <functional>
 #include <memory>
-#include <petscksp.h>
+#include "petsc.hpp"
 #include <vector>
 
 namespace breastsim
@@ -41,9 +41,6 @@ public:
                  std::shared_ptr<const dolfinx::fem::Form<T>> J,
                  std::shared_ptr<dolfinx::fem::Function<T>> u,
                  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> bcs);
-  ~ResidualNewton();
-  ResidualNewton(const ResidualNewton&) = delete;
-  ResidualNewton& operator=(const ResidualNewton&) = delete;
 
   /// |R(u)| with the constrained rows set to u - g (collective).
   double residual_norm();
@@ -52,11 +49,21 @@ public:
                              const std::function<void(int, double)>& progress = {});
 
 private:
+  /// _A = J(u) with the constrained rows and columns replaced by the identity.
+  void assemble_jacobian();
+  /// _dx = J^-1 R by the LU solver; false if the factorization failed.
+  bool solve_direction();
+  /// u -= step dx with step = 1, halved (at most max_halvings times) while
+  /// |R| does not fall below r_old; returns |R| at the accepted step.
+  double damped_step(double r_old, int max_halvings, double& step);
+  /// |step dx| <= step_rtol |u| and |R| <= accept_rtol * scale.
+  bool stagnated(double step, double r, double scale, const ResidualNewtonOptions& o) const;
+
   std::shared_ptr<const dolfinx::fem::Form<T>> _R, _J;
   std::shared_ptr<dolfinx::fem::Function<T>> _u;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> _bcs;
-  Mat _A = nullptr;
-  Vec _b = nullptr, _dx = nullptr, _x = nullptr;
-  KSP _ksp = nullptr;
+  PetscMat _A;
+  PetscVec _b, _dx, _x; ///< residual, Newton direction, u's values (a wrap)
+  PetscKsp _ksp;
 };
 } // namespace breastsim

@@ -3,11 +3,11 @@
 #include "errors.hpp"
 #include "mesh_from_gmsh.hpp"
 #include "residual_newton.hpp"
+#include "timer.hpp"
 #include "sphere_bench_p1.h"
 #include "sphere_bench_p2.h"
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/Constant.h>
@@ -169,48 +169,43 @@ double sum_all(double local, MPI_Comm comm)
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
   return global;
 }
-} // namespace
 
-SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double mesh_size,
-                                     MPI_Comm comm, int load_steps)
+void check_inputs(const SphereBenchSpec& s, int order, double mesh_size, int load_steps)
 {
-  const auto t0 = std::chrono::steady_clock::now();
   if (order != 1 && order != 2)
     throw InputError(fmt::format("sphere benchmark: element order must be 1 or 2, got {}", order));
   if (!(s.A > 0 && s.B > s.A && mesh_size > 0 && load_steps >= 1))
     throw InputError("sphere benchmark: need 0 < A < B, mesh_size > 0, load_steps >= 1");
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  meshes::TaggedMesh tm;
-  tm.order = order;
-  if (rank == 0)
-    tm = octant_shell(s, order, mesh_size);
-  TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
+}
 
-  auto space = order == 1 ? functionspace_form_sphere_bench_p1_bench_residual
-                          : functionspace_form_sphere_bench_p2_bench_residual;
-  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(space, "u", m.mesh));
-  auto u = std::make_shared<fem::Function<T>>(V);
-  auto mu = std::make_shared<fem::Constant<T>>(s.mu);
-  auto lmbda = std::make_shared<fem::Constant<T>>(s.lambda);
-  auto p0 = std::make_shared<fem::Constant<T>>(0.0);
-  const std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants{
-      {"mu", mu}, {"lmbda", lmbda}, {"p0", p0}};
-  auto create = [&](ufcx_form* f, int rank_)
-  {
-    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
-    return std::make_shared<fem::Form<T>>(fem::create_form<T>(
-        *f, spaces, {{"u", u}}, constants, {{fem::IntegralType::exterior_facet, m.facets.get()}},
-        m.mesh));
-  };
-  auto R = create(order == 1 ? form_sphere_bench_p1_bench_residual : form_sphere_bench_p2_bench_residual, 1);
-  auto Jf = create(order == 1 ? form_sphere_bench_p1_bench_jacobian : form_sphere_bench_p2_bench_jacobian, 2);
+/// The compiled forms of verification/forms/sphere_bench.py for P1 or P2.
+struct SphereForms
+{
+  ufcx_function_space* (*space)(const char*);
+  ufcx_form *residual, *jacobian, *ur_inner, *area_inner, *ur_outer, *area_outer;
+};
 
-  // Sliding symmetry: u_i = 0 on the plane x_i = 0.
+SphereForms sphere_forms(int order)
+{
+  if (order == 1)
+    return {functionspace_form_sphere_bench_p1_bench_residual, form_sphere_bench_p1_bench_residual,
+            form_sphere_bench_p1_bench_jacobian, form_sphere_bench_p1_bench_ur_inner,
+            form_sphere_bench_p1_bench_area_inner, form_sphere_bench_p1_bench_ur_outer,
+            form_sphere_bench_p1_bench_area_outer};
+  return {functionspace_form_sphere_bench_p2_bench_residual, form_sphere_bench_p2_bench_residual,
+          form_sphere_bench_p2_bench_jacobian, form_sphere_bench_p2_bench_ur_inner,
+          form_sphere_bench_p2_bench_area_inner, form_sphere_bench_p2_bench_ur_outer,
+          form_sphere_bench_p2_bench_area_outer};
+}
+
+/// Sliding symmetry: u_i = 0 on the plane x_i = 0.
+std::vector<std::shared_ptr<const fem::DirichletBC<T>>> symmetry_bcs(const fem::FunctionSpace& V,
+                                                                     const TaggedDolfinxMesh& m)
+{
   std::vector<std::shared_ptr<const fem::DirichletBC<T>>> bcs;
   for (int i = 0; i < 3; ++i)
   {
-    auto Vi = V->sub({i});
+    auto Vi = V.sub({i});
     std::vector<std::int32_t> facets;
     for (std::size_t k = 0; k < m.facets->values().size(); ++k)
       if (m.facets->values()[k] == tag_plane_x + i)
@@ -218,15 +213,22 @@ SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double
     auto dofs = fem::locate_dofs_topological(*Vi, 2, facets);
     bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), Vi));
   }
+  return bcs;
+}
 
-  ResidualNewton newton(R, Jf, u, bcs);
-
-  SphereBenchResult res;
-  p0->value = {s.p0};
-  const double r_load = newton.residual_norm(); // |R(0)| at the full pressure: the force scale
+/// The pressure p0 raised to s.p0 in `load_steps` equal increments, Newton
+/// to |R| <= 1e-11 |R_load| at each (|R_load| = |R(u)| at the full pressure,
+/// from the current u); the Newton iterations over all steps, SolveError if
+/// a step does not converge.
+int apply_pressure(ResidualNewton& newton, fem::Constant<T>& p0, const SphereBenchSpec& s,
+                   int order, int load_steps)
+{
+  p0.value = {s.p0};
+  const double r_load = newton.residual_norm();
+  int iterations = 0;
   for (int step = 1; step <= load_steps; ++step)
   {
-    p0->value = {s.p0 * step / load_steps};
+    p0.value = {s.p0 * step / load_steps};
     ResidualNewtonOptions no;
     no.rtol = 1e-11;
     no.max_iterations = 40;
@@ -235,28 +237,55 @@ SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double
       spdlog::debug("sphere bench P{} load {}/{}: Newton {} |R| / |R_load| = {:.3e}", order, step,
                     load_steps, it, r / r_load);
     });
-    res.newton_iterations += nr.iterations;
+    iterations += nr.iterations;
     if (nr.lu_failed || !(nr.residual <= 1e-11 * r_load))
       throw SolveError(fmt::format("sphere benchmark P{}: Newton did not converge at load step {} "
                                    "(|R| / |R_load| = {:.3e}{})",
                                    order, step, nr.residual / r_load,
                                    nr.lu_failed ? "; the LU solve failed" : ""));
   }
+  return iterations;
+}
+} // namespace
 
+SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double mesh_size,
+                                     MPI_Comm comm, int load_steps)
+{
+  Stopwatch stopwatch("sphere benchmark");
+  check_inputs(s, order, mesh_size, load_steps);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  meshes::TaggedMesh tm;
+  tm.order = order;
+  if (rank == 0)
+    tm = octant_shell(s, order, mesh_size);
+  TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
+
+  const SphereForms forms = sphere_forms(order);
+  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(forms.space, "u", m.mesh));
+  auto u = std::make_shared<fem::Function<T>>(V);
+  auto p0 = std::make_shared<fem::Constant<T>>(0.0);
+  const std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants{
+      {"mu", std::make_shared<fem::Constant<T>>(s.mu)},
+      {"lmbda", std::make_shared<fem::Constant<T>>(s.lambda)},
+      {"p0", p0}};
+  auto create = [&](ufcx_form* f, int rank_)
+  {
+    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
+    return std::make_shared<fem::Form<T>>(fem::create_form<T>(
+        *f, spaces, {{"u", u}}, constants, {{fem::IntegralType::exterior_facet, m.facets.get()}},
+        m.mesh));
+  };
+  ResidualNewton newton(create(forms.residual, 1), create(forms.jacobian, 2), u, symmetry_bcs(*V, m));
+
+  SphereBenchResult res;
+  res.newton_iterations = apply_pressure(newton, *p0, s, order, load_steps);
   auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
-  if (order == 1)
-  {
-    res.u_inner = scalar(form_sphere_bench_p1_bench_ur_inner) / scalar(form_sphere_bench_p1_bench_area_inner);
-    res.u_outer = scalar(form_sphere_bench_p1_bench_ur_outer) / scalar(form_sphere_bench_p1_bench_area_outer);
-  }
-  else
-  {
-    res.u_inner = scalar(form_sphere_bench_p2_bench_ur_inner) / scalar(form_sphere_bench_p2_bench_area_inner);
-    res.u_outer = scalar(form_sphere_bench_p2_bench_ur_outer) / scalar(form_sphere_bench_p2_bench_area_outer);
-  }
+  res.u_inner = scalar(forms.ur_inner) / scalar(forms.area_inner);
+  res.u_outer = scalar(forms.ur_outer) / scalar(forms.area_outer);
   res.cells = m.mesh->topology().index_map(3)->size_global();
   res.dofs = V->dofmap()->index_map->size_global() * V->dofmap()->index_map_bs();
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.seconds = stopwatch.seconds();
   return res;
 }
 } // namespace breastsim

@@ -1,5 +1,5 @@
 #pragma once
-// Reference benchmark (issue 5): a thick-walled sphere A <= |X| <= B of the
+// Reference benchmark: a thick-walled sphere A <= |X| <= B of the
 // compressible neo-Hookean tissue (paper eq. 5), inflated by a dead inner
 // pressure p0 (nominal traction), outer surface free. The radially symmetric
 // solution r(R) of the same energy is integrated as an ODE (sphere_reference)

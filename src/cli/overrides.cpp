@@ -1,7 +1,41 @@
 #include "overrides.hpp"
 #include "errors.hpp"
+#include "petsc.hpp"
 #include <fmt/format.h>
 #include <petscksp.h>
+
+// PETSc-style functions: they return PETSc error codes (PetscCall).
+namespace
+{
+/// PETSc error handler that keeps the first message (the one naming the option).
+PetscErrorCode keep_message(MPI_Comm, int, const char*, const char*, PetscErrorCode n, PetscErrorType,
+                            const char* mess, void* ctx)
+{
+  auto* s = static_cast<std::string*>(ctx);
+  if (s->empty() && mess)
+    *s = mess;
+  return n;
+}
+
+/// Set a KSP up from the options on a 2x2 identity: unknown types and bad
+/// values fail here, before any solve. PETSc's error code, not an exception:
+/// the caller reports the message its error handler kept.
+PetscErrorCode probe_solver()
+{
+  breastsim::PetscMat A;
+  breastsim::PetscKsp ksp;
+  PetscCall(MatCreateAIJ(PETSC_COMM_SELF, 2, 2, 2, 2, 1, nullptr, 0, nullptr, A.out()));
+  for (PetscInt i = 0; i < 2; ++i)
+    PetscCall(MatSetValue(A.get(), i, i, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(A.get(), MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A.get(), MAT_FINAL_ASSEMBLY));
+  PetscCall(KSPCreate(PETSC_COMM_SELF, ksp.out()));
+  PetscCall(KSPSetOperators(ksp.get(), A.get(), A.get()));
+  PetscCall(KSPSetFromOptions(ksp.get()));
+  PetscCall(KSPSetUp(ksp.get()));
+  return 0;
+}
+} // namespace
 
 namespace breastsim::cli
 {
@@ -19,52 +53,15 @@ Config load_case(const std::string& file, const std::vector<std::string>& sets)
   return c;
 }
 
-namespace
-{
-/// PETSc error handler that keeps the first message (the one naming the option).
-PetscErrorCode keep_message(MPI_Comm, int, const char*, const char*, PetscErrorCode n, PetscErrorType,
-                            const char* mess, void* ctx)
-{
-  auto* s = static_cast<std::string*>(ctx);
-  if (s->empty() && mess)
-    *s = mess;
-  return n;
-}
-
-/// Set a KSP up from the options on a 2x2 identity: unknown types and bad
-/// values fail here, before any solve.
-PetscErrorCode probe_solver()
-{
-  Mat A;
-  KSP ksp;
-  PetscCall(MatCreateAIJ(PETSC_COMM_SELF, 2, 2, 2, 2, 1, nullptr, 0, nullptr, &A));
-  for (PetscInt i = 0; i < 2; ++i)
-    PetscCall(MatSetValue(A, i, i, 1.0, INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp));
-  PetscCall(KSPSetOperators(ksp, A, A));
-  const PetscErrorCode rc = [&]() -> PetscErrorCode
-  {
-    PetscCall(KSPSetFromOptions(ksp));
-    PetscCall(KSPSetUp(ksp));
-    return 0;
-  }();
-  KSPDestroy(&ksp);
-  MatDestroy(&A);
-  return rc;
-}
-} // namespace
-
 void insert_petsc_options(const Config& c, const std::string& extra)
 {
   const std::string opts = c.text("solver.petsc_options") + " " + extra;
   std::string message;
-  PetscPushErrorHandler(keep_message, &message);
+  PETSC_CHECK(PetscPushErrorHandler(keep_message, &message));
   PetscErrorCode rc = PetscOptionsInsertString(nullptr, opts.c_str());
   if (rc == 0)
     rc = probe_solver();
-  PetscPopErrorHandler();
+  PETSC_CHECK(PetscPopErrorHandler());
   if (rc != 0)
     throw InputError(fmt::format("PETSc options \"{}\" (solver.petsc_options and --petsc-options) "
                                  "are refused by PETSc: {}",

@@ -2,7 +2,7 @@
 // Checked PETSc calls and owning PETSc handles.
 //
 //   PETSC_CHECK(VecNorm(b, NORM_2, &n));
-// throws PetscError naming the failing call, its file and line, and PETSc's
+// throws PetscCallError naming the failing call, its file and line, and PETSc's
 // own message for the error code. Owning handles destroy their object when
 // they go out of scope (also when an exception unwinds the stack):
 //   PetscVec b(model.create_vector());   // VecDestroy at scope exit
@@ -18,19 +18,19 @@
 namespace breastsim
 {
 /// A PETSc call that returned an error code (an internal failure: exit code 1).
-class PetscError : public std::runtime_error
+class PetscCallError : public std::runtime_error
 {
 public:
   using std::runtime_error::runtime_error;
 };
 
-/// Throw PetscError for `code` returned by `call` at file:line.
+/// Throw PetscCallError for `code` returned by `call` at file:line.
 [[noreturn]] inline void throw_petsc_error(PetscErrorCode code, const char* call, const char* file,
                                            int line)
 {
   const char* text = nullptr;
   PetscErrorMessage(code, &text, nullptr);
-  throw PetscError(std::string("PETSc call ") + call + " failed (" + file + ":" + std::to_string(line)
+  throw PetscCallError(std::string("PETSc call ") + call + " failed (" + file + ":" + std::to_string(line)
                    + "): error " + std::to_string(static_cast<int>(code)) + (text ? ", " : "")
                    + (text ? text : ""));
 }
@@ -85,7 +85,7 @@ using PetscKsp = PetscOwned<KSP, KSPDestroy>;
 using PetscIs = PetscOwned<IS, ISDestroy>;
 } // namespace breastsim
 
-/// Call a PETSc function and throw breastsim::PetscError if it fails.
+/// Call a PETSc function and throw breastsim::PetscCallError if it fails.
 #define PETSC_CHECK(call)                                                                          \
   do                                                                                               \
   {                                                                                                \

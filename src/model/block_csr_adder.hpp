@@ -4,14 +4,14 @@
 // whose nonzero pattern is made of bs x bs blocks (vector P1/P2 spaces).
 //
 // PETSc's MatSetValuesBlockedLocal on AIJ expands every element matrix into
-// scalar rows and binary-searches each of the (n bs)^2 columns; that was 75 %
-// of the Jacobian assembly (52k P1 tetrahedra: 0.12 of 0.16 s). Here one
-// search per block pair finds the block's offset in the CSR row, and the bs^2
-// values are added straight into the value array. Under MPI, rows owned by
-// this rank go straight into the diagonal or off-diagonal part (columns
-// located through the matrix's local-to-global mapping and the off-diagonal
-// part's column map); rows of ghost nodes go through PETSc
-// (MatSetValuesBlockedLocal, communicated at assembly).
+// scalar rows and binary-searches each of the (n bs)^2 columns, most of the
+// Jacobian assembly's time (docs/PERFORMANCE.md, "Figures moved from code
+// comments"). Here one search per block pair finds the block's offset in the
+// CSR row, and the bs^2 values are added straight into the value array.
+// Under MPI, rows owned by this rank go straight into the diagonal or
+// off-diagonal part (columns located through the matrix's local-to-global
+// mapping and the off-diagonal part's column map); rows of ghost nodes go
+// through PETSc (MatSetValuesBlockedLocal, communicated at assembly).
 //
 // Replay: an assembly of the same form visits the same cells and facets in
 // the same order, so the first assembly with a given key records, call by
@@ -21,9 +21,11 @@
 // searching. A call that differs ends the replay for that assembly (it and
 // the rest are searched, and the next assembly records afresh), so a
 // replayed assembly always writes where a searched one would.
+#include "petsc.hpp"
 #include <petscmat.h>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace breastsim
@@ -49,10 +51,43 @@ public:
   void add(std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
            std::span<const PetscScalar> values);
   void end(Mat A);
+  /// End an assembly abandoned by an exception between begin() and end():
+  /// the value arrays are given back, nothing is recorded or replayed.
+  void cancel(Mat A) noexcept;
   /// Whether the last begin()..end() was replayed from start to end.
   bool replayed() const { return _last_replayed; }
 
 private:
+  /// A's diagonal part (A itself if serial), off-diagonal part (nullptr if
+  /// serial) and the global columns of the off-diagonal part's compressed
+  /// columns; aij false unless A is SeqAIJ or MPIAIJ.
+  struct Parts
+  {
+    bool aij = false;
+    int count = 0;
+    Mat part[2] = {nullptr, nullptr};
+    const PetscInt* garray = nullptr;
+  };
+  static Parts parts_of(Mat A);
+  /// The local block column of each block of the off-diagonal part's
+  /// compressed columns (-1: no local index on this rank); false if those
+  /// columns are not bs-blocked or the column mapping's block size is not bs.
+  bool off_diagonal_blocks(Mat A, const Parts& parts, std::vector<PetscInt>& block) const;
+  /// Slots and strides of every owned block row from the CSR structure of
+  /// the parts; false if the pattern is not bs-blocked.
+  bool record_slots(const Parts& parts, const std::vector<PetscInt>& off_block);
+  struct RowIJ;
+  /// Slots and strides of owned block row i; false if it is not bs-blocked.
+  bool record_block_row(PetscInt i, const RowIJ* ij, int nparts,
+                        const std::vector<PetscInt>& off_block);
+  /// Whether the current call (rows, cols) is the next recorded one.
+  bool is_next_recorded_call(std::span<const std::int32_t> rows,
+                             std::span<const std::int32_t> cols) const;
+  /// Part and value offset of block (r, col): replayed, or searched (and
+  /// recorded while recording).
+  std::pair<std::int32_t, PetscInt> block_offset(std::int32_t r, std::int32_t col);
+  /// Give the parts' value arrays back to PETSc.
+  void restore_arrays();
   /// Block row `row` (a ghost node's) of an element matrix through PETSc.
   void add_ghost_row(PetscInt row, std::span<const std::int32_t> cols,
                      const PetscScalar* row_values);

@@ -2,6 +2,7 @@
 #include "ghosted_assembly.hpp"
 #include "breastsim_registry.hpp"
 #include "errors.hpp"
+#include "petsc.hpp"
 #include "composite_form.hpp"
 #include <algorithm>
 #include <dolfinx/fem/Expression.h>
@@ -275,10 +276,9 @@ double Model::min_detF()
 
 void Model::set_displacement(Vec x)
 {
-  Vec ux = la::petsc::create_vector_wrap(*_u->x());
-  if (x != ux)
-    VecCopy(x, ux);
-  VecDestroy(&ux);
+  PetscVec ux(la::petsc::create_vector_wrap(*_u->x()));
+  if (x != ux.get())
+    PETSC_CHECK(VecCopy(x, ux.get()));
   _u->x()->scatter_fwd();
 }
 
@@ -307,18 +307,16 @@ void Model::constrain_displacement()
 
 void Model::set_constrained_entries(Vec b, double scale) const
 {
-  Vec ux = la::petsc::create_vector_wrap(*_u->x());
-  fem::petsc::set_bc(b, _bcs, ux, scale); // b = scale (g - u) on constrained dofs
-  VecDestroy(&ux);
+  PetscVec ux(la::petsc::create_vector_wrap(*_u->x()));
+  fem::petsc::set_bc(b, _bcs, ux.get(), scale); // b = scale (g - u) on constrained dofs
 }
 
 double Model::residual_norm(const std::string& term)
 {
-  Vec b = create_vector();
-  assemble_residual(b, term);
+  PetscVec b(create_vector());
+  assemble_residual(b.get(), term);
   PetscReal n;
-  VecNorm(b, NORM_2, &n);
-  VecDestroy(&b);
+  PETSC_CHECK(VecNorm(b.get(), NORM_2, &n));
   return n;
 }
 
@@ -326,56 +324,74 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
 {
   FormSet& f = forms(term);
   update_partners(term);
-  MatZeroEntries(A);
+  PETSC_CHECK(MatZeroEntries(A));
   // Straight into the CSR values once the pattern of A is known (AIJ; under
   // MPI ghost rows still through PETSc); otherwise (first assembly) through
   // PETSc, and the pattern is recorded.
   const bool fast = _jacobian_adder.matches(A);
   if (fast)
-  {
-    _jacobian_adder.begin(A, f.jacobian.get()); // same form: replay the offsets
-    fem::assemble_matrix([this](auto rows, auto cols, auto vals)
-                         { _jacobian_adder.add(rows, cols, vals); return 0; },
-                         *f.jacobian, _bcs);
-    _jacobian_adder.end(A);
-  }
+    assemble_recorded(A, *f.jacobian);
   else
     fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, _bcs);
   // Partner fields: A += on_k (E_uw P + P^T E_wu + P^T E_ww P), constrained
   // rows and columns excluded; added before the first final assembly so that
-  // PETSc keeps these entries in the matrix structure. Entries outside the
-  // preallocation (a matrix created while the term was off) are allocated.
+  // PETSc keeps these entries in the matrix structure.
   for (auto& p : _partners)
-  {
-    const double s = partner_weight(*p, term);
-    if (s == 0.0)
-      continue;
-    Mat K = p->hessian_coupling(constrained_markers());
-    MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
-    PetscInt r0, r1;
-    MatGetOwnershipRange(K, &r0, &r1);
-    std::vector<PetscScalar> vals;
-    for (PetscInt r = r0; r < r1; ++r)
+    if (const double s = partner_weight(*p, term); s != 0.0)
     {
-      PetscInt n;
-      const PetscInt* cols;
-      const PetscScalar* v;
-      MatGetRow(K, r, &n, &cols, &v);
-      vals.assign(v, v + n);
-      for (auto& x : vals)
-        x *= s;
-      MatSetValues(A, 1, &r, n, cols, vals.data(), ADD_VALUES);
-      MatRestoreRow(K, r, &n, &cols, &v);
+      PetscMat K(p->hessian_coupling(constrained_markers()));
+      add_scaled(A, K.get(), s);
     }
-    MatDestroy(&K);
-  }
-  MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+  PETSC_CHECK(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY));
   fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *_V, _bcs);
-  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  PETSC_CHECK(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   if (!fast)
     _jacobian_adder.record(A);
+}
+
+void Model::assemble_recorded(Mat A, const fem::Form<T>& jacobian)
+{
+  _jacobian_adder.begin(A, &jacobian); // same form: replay the offsets
+  try
+  {
+    fem::assemble_matrix([this](auto rows, auto cols, auto vals)
+                         { _jacobian_adder.add(rows, cols, vals); return 0; },
+                         jacobian, _bcs);
+  }
+  catch (...)
+  {
+    _jacobian_adder.cancel(A);
+    throw;
+  }
+  _jacobian_adder.end(A);
+}
+
+void Model::add_scaled(Mat A, Mat K, double s) const
+{
+  // Entries outside the preallocation (a matrix created while the term was
+  // off) are allocated.
+  PETSC_CHECK(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  PetscInt r0, r1;
+  PETSC_CHECK(MatGetOwnershipRange(K, &r0, &r1));
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> vals;
+  for (PetscInt r = r0; r < r1; ++r)
+  {
+    // Row r of K copied (and scaled) before it is given back to PETSc.
+    PetscInt n;
+    const PetscInt* c;
+    const PetscScalar* v;
+    PETSC_CHECK(MatGetRow(K, r, &n, &c, &v));
+    cols.assign(c, c + n);
+    vals.assign(v, v + n);
+    PETSC_CHECK(MatRestoreRow(K, r, &n, &c, &v));
+    for (auto& x : vals)
+      x *= s;
+    PETSC_CHECK(MatSetValues(A, 1, &r, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(),
+                             ADD_VALUES));
+  }
 }
 
 std::vector<std::int8_t> Model::constrained_markers() const
@@ -399,32 +415,37 @@ Mat Model::create_matrix()
     update_partners("");
   la::SparsityPattern pattern = fem::create_sparsity_pattern(*forms("").jacobian);
   for (auto& p : _partners)
-  {
-    if (partner_weight(*p, "") == 0.0)
-      continue;
-    Mat K = p->hessian_coupling({});
-    PetscInt r0, r1;
-    MatGetOwnershipRange(K, &r0, &r1);
-    for (PetscInt r = r0; r < r1; ++r)
+    if (partner_weight(*p, "") != 0.0)
     {
-      PetscInt n;
-      const PetscInt* cols;
-      MatGetRow(K, r, &n, &cols, nullptr);
-      std::vector<std::int32_t> row = {static_cast<std::int32_t>(r / 3)}, blocks;
-      for (PetscInt k = 0; k < n; ++k)
-        blocks.push_back(static_cast<std::int32_t>(cols[k] / 3));
-      MatRestoreRow(K, r, &n, &cols, nullptr);
-      std::sort(blocks.begin(), blocks.end());
-      blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
-      pattern.insert(row, blocks); // serial (partner fields): local = global indices
+      PetscMat K(p->hessian_coupling({}));
+      insert_block_pattern(pattern, K.get());
     }
-    MatDestroy(&K);
-  }
   pattern.assemble();
-  Mat A = la::petsc::create_matrix(_mesh.mesh->comm(), pattern, "aij");
-  insert_pattern(A, pattern);
-  _jacobian_adder.record(A); // the first Jacobian already goes straight into the values
-  return A;
+  PetscMat A(la::petsc::create_matrix(_mesh.mesh->comm(), pattern, "aij"));
+  insert_pattern(A.get(), pattern);
+  _jacobian_adder.record(A.get()); // the first Jacobian already goes straight into the values
+  return A.release();
+}
+
+void Model::insert_block_pattern(la::SparsityPattern& pattern, Mat K)
+{
+  // Block row r / 3 couples with the blocks cols / 3 of row r (serial
+  // (partner fields): local = global indices).
+  PetscInt r0, r1;
+  PETSC_CHECK(MatGetOwnershipRange(K, &r0, &r1));
+  for (PetscInt r = r0; r < r1; ++r)
+  {
+    PetscInt n;
+    const PetscInt* cols;
+    PETSC_CHECK(MatGetRow(K, r, &n, &cols, nullptr));
+    std::vector<std::int32_t> row = {static_cast<std::int32_t>(r / 3)}, blocks;
+    for (PetscInt k = 0; k < n; ++k)
+      blocks.push_back(static_cast<std::int32_t>(cols[k] / 3));
+    PETSC_CHECK(MatRestoreRow(K, r, &n, &cols, nullptr));
+    std::sort(blocks.begin(), blocks.end());
+    blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+    pattern.insert(row, blocks);
+  }
 }
 
 void Model::insert_pattern(Mat A, const la::SparsityPattern& pattern) const
@@ -449,11 +470,11 @@ void Model::insert_pattern(Mat A, const la::SparsityPattern& pattern) const
     std::sort(cols.begin(), cols.end());
     zeros.assign(bs * bs * cols.size(), 0.0);
     const PetscInt row = static_cast<PetscInt>(row0 + i);
-    MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
-                        INSERT_VALUES);
+    PETSC_CHECK(MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
+                                    zeros.data(), INSERT_VALUES));
   }
-  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  PETSC_CHECK(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
 }
 
 Vec Model::create_vector() const

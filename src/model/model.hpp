@@ -87,7 +87,7 @@ public:
   /// Tangent matrix with constrained rows/columns replaced by the identity.
   void assemble_jacobian(Mat A, const std::string& term = "");
   /// Whether the last assemble_jacobian() added every element matrix through
-  /// offsets replayed from the previous assembly (src/model/model/block_csr_adder.hpp).
+  /// offsets replayed from the previous assembly (src/model/block_csr_adder.hpp).
   bool last_jacobian_replayed() const { return _jacobian_adder.replayed(); }
   /// A matrix with the sparsity of the Jacobian (AIJ, block size 3), its
   /// pattern inserted (zeros) and recorded for fast assembly. Caller owns.
@@ -97,7 +97,7 @@ public:
   /// Copy a PETSc vector of the displacement layout into u (ghosts updated).
   void set_displacement(Vec x);
 
-  // -- Partner fields (src/model/model/partner_field.hpp) --
+  // -- Partner fields (src/model/partner_field.hpp) --
   /// The partner field of a term that declares one (forms/model.py PARTNERS),
   /// brought up to date (P built if needed, w = P u). Throws if `term` has none.
   const PartnerField& partner(const std::string& term);
@@ -115,6 +115,12 @@ private:
   void update_partners(const std::string& term);
   AffineMap partner_map(const PartnerField& p) const;
   std::shared_ptr<dolfinx::fem::Form<T>> create(const std::string& name, int rank);
+  /// Jacobian assembly straight into A's CSR values (its pattern recorded).
+  void assemble_recorded(Mat A, const dolfinx::fem::Form<T>& jacobian);
+  /// A += s K (owned rows of K), new nonzeros allocated.
+  void add_scaled(Mat A, Mat K, double s) const;
+  /// The blocks of K's nonzeros (bs 3) into `pattern`.
+  static void insert_block_pattern(dolfinx::la::SparsityPattern& pattern, Mat K);
   /// Zeros at every entry of `pattern` (blocked) and the final assembly.
   void insert_pattern(Mat A, const dolfinx::la::SparsityPattern& pattern) const;
   /// b = scale (g - u) on the constrained dofs.

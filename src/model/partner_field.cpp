@@ -47,57 +47,67 @@ std::string key_of(const std::string& name)
   return "'" + name + "'";
 }
 
-void destroy(Mat& A)
+/// Refuse more than one rank: P is built from the serial mesh.
+void require_serial(MPI_Comm comm, const std::string& term)
 {
-  if (A)
-    MatDestroy(&A);
-  A = nullptr;
-}
-} // namespace
-
-Mat build_partner_interpolation(const fem::FunctionSpace& V,
-                                const mesh::MeshTags<std::int32_t>& facets,
-                                const generated::PartnerInfo& info, const AffineMap& g)
-{
-  const std::string& term = info.term;
-  const int tag_a = generated::tag(info.face_a), tag_b = generated::tag(info.face_b);
-  auto mesh = V.mesh();
-  const MPI_Comm comm = mesh->comm();
   int size;
   MPI_Comm_size(comm, &size);
   if (size > 1)
     throw InputError(fmt::format("energy term '{}' (a tissue-to-tissue suture) is serial-only: run it "
                                  "with one MPI rank (got {})", term, size));
-  auto& topology = mesh->topology();
-  const int tdim = topology.dim();
-  mesh->topology_mutable().create_connectivity(tdim - 1, tdim);
-  auto f_to_c = topology.connectivity(tdim - 1, tdim);
-  const auto faces_a = facets_with(facets, tag_a), faces_b = facets_with(facets, tag_b);
+}
+
+/// The facets of face A and of face B; InputError naming the term if either is empty.
+std::array<std::vector<std::int32_t>, 2> partner_faces(const mesh::MeshTags<std::int32_t>& facets,
+                                                       const generated::PartnerInfo& info)
+{
+  const int tag_a = generated::tag(info.face_a), tag_b = generated::tag(info.face_b);
+  auto faces_a = facets_with(facets, tag_a), faces_b = facets_with(facets, tag_b);
   if (faces_a.empty() || faces_b.empty())
     throw InputError(fmt::format("energy term '{}': the mesh has no facets tagged {} (face A = {} ({}): {} "
                                  "facets, face B = {} ({}): {} facets); tag the two faces to sew",
-                                 term, faces_a.empty() ? info.face_a : info.face_b, info.face_a, tag_a,
-                                 faces_a.size(), info.face_b, tag_b, faces_b.size()));
+                                 info.term, faces_a.empty() ? info.face_a : info.face_b, info.face_a,
+                                 tag_a, faces_a.size(), info.face_b, tag_b, faces_b.size()));
+  return {std::move(faces_a), std::move(faces_b)};
+}
 
-  // Candidate cells: those touching face B, with their bounding boxes.
+/// The cells touching face B, where the images g(X_i) are looked for, with
+/// their bounding boxes [min x, min y, min z, max x, max y, max z].
+struct CandidateCells
+{
   std::vector<std::int32_t> cells;
+  std::vector<std::array<double, 6>> boxes;
+  double pad = 0; ///< boxes widened by this: curved (P2) faces may put g(X_i) just outside
+
+  /// Whether y lies in the padded box of cell k.
+  bool near(std::size_t k, const std::array<double, 3>& y) const
+  {
+    const auto& b = boxes[k];
+    return !(y[0] < b[0] - pad || y[1] < b[1] - pad || y[2] < b[2] - pad || y[0] > b[3] + pad
+             || y[1] > b[4] + pad || y[2] > b[5] + pad);
+  }
+};
+
+CandidateCells candidate_cells(const mesh::Mesh& mesh, const std::vector<std::int32_t>& faces_b)
+{
+  const int tdim = mesh.topology().dim();
+  mesh.topology_mutable().create_connectivity(tdim - 1, tdim);
+  auto f_to_c = mesh.topology().connectivity(tdim - 1, tdim);
+  CandidateCells out;
   for (auto f : faces_b)
     for (auto c : f_to_c->links(f))
-      cells.push_back(c);
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  const auto& geom = mesh->geometry();
-  const auto& xdofs = geom.dofmap();
-  std::span<const double> xg = geom.x();
-  const fem::CoordinateElement& cmap = geom.cmap();
-  const std::size_t nn = xdofs.links(cells[0]).size();
-  std::vector<std::array<double, 6>> boxes(cells.size());
+      out.cells.push_back(c);
+  std::sort(out.cells.begin(), out.cells.end());
+  out.cells.erase(std::unique(out.cells.begin(), out.cells.end()), out.cells.end());
+  const auto& xdofs = mesh.geometry().dofmap();
+  std::span<const double> xg = mesh.geometry().x();
+  out.boxes.resize(out.cells.size());
   double diam = 0;
-  for (std::size_t k = 0; k < cells.size(); ++k)
+  for (std::size_t k = 0; k < out.cells.size(); ++k)
   {
-    auto& b = boxes[k];
+    auto& b = out.boxes[k];
     b = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-    for (auto n : xdofs.links(cells[k]))
+    for (auto n : xdofs.links(out.cells[k]))
       for (int j = 0; j < 3; ++j)
       {
         b[j] = std::min(b[j], xg[3 * n + j]);
@@ -105,104 +115,143 @@ Mat build_partner_interpolation(const fem::FunctionSpace& V,
       }
     diam = std::max({diam, b[3] - b[0], b[4] - b[1], b[5] - b[2]});
   }
-  const double pad = 1e-3 * diam; // curved (P2) faces: g(X_i) may sit just outside
+  out.pad = 1e-3 * diam;
+  return out;
+}
 
-  // Rows: the nodes of face A (blocked dof indices).
-  auto dofmap = V.dofmap();
-  if (static_cast<std::size_t>(dofmap->cell_dofs(cells[0]).size()) != nn)
-    throw std::logic_error("partner field: geometry and displacement degrees differ");
-  auto nodes_a = fem::locate_dofs_topological(V, tdim - 1, faces_a);
-  const auto X = V.tabulate_dof_coordinates(false);
-  const std::int32_t nlocal = dofmap->index_map->size_local() * 3;
+/// y = g(X) = G X + t for the point X = (x[0], x[1], x[2]).
+std::array<double, 3> apply_map(const AffineMap& g, const double* x)
+{
+  std::array<double, 3> y;
+  for (int r = 0; r < 3; ++r)
+    y[r] = g[3 * r] * x[0] + g[3 * r + 1] * x[1] + g[3 * r + 2] * x[2] + g[9 + r];
+  return y;
+}
 
-  Mat P;
-  MatCreate(comm, &P);
-  MatSetSizes(P, nlocal, nlocal, PETSC_DETERMINE, PETSC_DETERMINE);
-  MatSetType(P, MATAIJ);
-  MatSeqAIJSetPreallocation(P, static_cast<PetscInt>(nn), nullptr);
-  MatMPIAIJSetPreallocation(P, static_cast<PetscInt>(nn), nullptr, 0, nullptr);
+/// The candidate cell in which y lies least outside (outside() of its
+/// reference point xi; the first such cell on ties), or cell -1.
+struct ImagePoint
+{
+  std::int32_t cell = -1;
+  std::array<double, 3> xi{};
+  double outside = std::numeric_limits<double>::infinity();
+};
 
-  std::vector<double> geometry(nn * 3), basis(cmap.tabulate_shape(0, 1)[2]);
+ImagePoint locate_image(const mesh::Geometry& geom, const CandidateCells& candidates,
+                        const std::array<double, 3>& y)
+{
   namespace stdex = std::experimental;
   using mdspan2 = stdex::mdspan<double, stdex::dextents<std::size_t, 2>>;
   using cmdspan2 = stdex::mdspan<const double, stdex::dextents<std::size_t, 2>>;
-  for (auto i : nodes_a)
+  const auto& xdofs = geom.dofmap();
+  std::span<const double> xg = geom.x();
+  ImagePoint best;
+  std::vector<double> nodes;
+  for (std::size_t k = 0; k < candidates.cells.size(); ++k)
   {
-    // y = g(X_i) = G X_i + t
-    std::array<double, 3> y;
-    for (int r = 0; r < 3; ++r)
-      y[r] = g[3 * r] * X[3 * i] + g[3 * r + 1] * X[3 * i + 1] + g[3 * r + 2] * X[3 * i + 2] + g[9 + r];
-    double best = std::numeric_limits<double>::infinity();
-    std::int32_t best_cell = -1;
-    std::array<double, 3> best_xi{};
-    for (std::size_t k = 0; k < cells.size(); ++k)
+    if (!candidates.near(k, y))
+      continue;
+    auto gn = xdofs.links(candidates.cells[k]);
+    nodes.resize(3 * gn.size());
+    for (std::size_t n = 0; n < gn.size(); ++n)
+      for (int j = 0; j < 3; ++j)
+        nodes[3 * n + j] = xg[3 * gn[n] + j];
+    std::array<double, 3> xi{};
+    try
     {
-      const auto& b = boxes[k];
-      if (y[0] < b[0] - pad || y[1] < b[1] - pad || y[2] < b[2] - pad || y[0] > b[3] + pad
-          || y[1] > b[4] + pad || y[2] > b[5] + pad)
-        continue;
-      auto gn = xdofs.links(cells[k]);
-      for (std::size_t n = 0; n < nn; ++n)
-        for (int j = 0; j < 3; ++j)
-          geometry[3 * n + j] = xg[3 * gn[n] + j];
-      std::array<double, 3> xi{};
-      try
-      {
-        cmap.pull_back_nonaffine(mdspan2(xi.data(), 1, 3), cmdspan2(y.data(), 1, 3),
-                                 cmdspan2(geometry.data(), nn, 3), 1e-12, 20);
-      }
-      catch (const std::runtime_error&)
-      {
-        continue; // Newton of the pull-back failed: y is far outside this cell
-      }
-      if (outside(xi) < best)
-      {
-        best = outside(xi);
-        best_cell = cells[k];
-        best_xi = xi;
-      }
+      geom.cmap().pull_back_nonaffine(mdspan2(xi.data(), 1, 3), cmdspan2(y.data(), 1, 3),
+                                      cmdspan2(nodes.data(), gn.size(), 3), 1e-12, 20);
     }
-    if (best > 1e-3)
-      throw InputError(fmt::format(
-          "energy term '{}': the map g sends the node ({:.6g}, {:.6g}, {:.6g}) m of face A ({}) to "
-          "({:.6g}, {:.6g}, {:.6g}) m, which is in no cell touching face B ({}); check the map "
-          "keys {} and {}", term, X[3 * i], X[3 * i + 1], X[3 * i + 2], info.face_a, y[0], y[1],
-          y[2], info.face_b, key_of(info.map_matrix), key_of(info.map_shift)));
-    // Row 3 i + c: u_c(y) = sum_j phi_j(xi) u_c(node j), the element basis at xi
-    // (the geometry and u are Lagrange elements of the same degree: local
-    // node j is the same point for both).
-    cmap.tabulate(0, std::span<const double>(best_xi.data(), 3), {1, 3}, basis);
-    auto cd = dofmap->cell_dofs(best_cell);
-    for (int c = 0; c < 3; ++c)
+    catch (const std::runtime_error&)
     {
-      const PetscInt row = 3 * i + c;
-      for (std::size_t j = 0; j < nn; ++j)
-      {
-        const PetscInt col = 3 * cd[j] + c;
-        const PetscScalar val = basis[j];
-        if (val != 0.0)
-          MatSetValues(P, 1, &row, 1, &col, &val, INSERT_VALUES);
-      }
+      continue; // Newton of the pull-back failed: y is far outside this cell
+    }
+    if (outside(xi) < best.outside)
+      best = {candidates.cells[k], xi, outside(xi)};
+  }
+  return best;
+}
+
+/// An empty AIJ matrix n x n (n = nlocal on this rank) with `per_row` entries per row.
+PetscMat create_interpolation_matrix(MPI_Comm comm, std::int32_t nlocal, std::size_t per_row)
+{
+  PetscMat P;
+  PETSC_CHECK(MatCreate(comm, P.out()));
+  PETSC_CHECK(MatSetSizes(P.get(), nlocal, nlocal, PETSC_DETERMINE, PETSC_DETERMINE));
+  PETSC_CHECK(MatSetType(P.get(), MATAIJ));
+  PETSC_CHECK(MatSeqAIJSetPreallocation(P.get(), static_cast<PetscInt>(per_row), nullptr));
+  PETSC_CHECK(MatMPIAIJSetPreallocation(P.get(), static_cast<PetscInt>(per_row), nullptr, 0, nullptr));
+  return P;
+}
+
+/// Rows 3 i + c of P: u_c(y) = sum_j phi_j(xi) u_c(node j), the element basis
+/// at xi of the cell with dofs `cell_dofs` (the geometry and u are Lagrange
+/// elements of the same degree: local node j is the same point for both).
+void set_interpolation_rows(Mat P, std::int32_t i, std::span<const std::int32_t> cell_dofs,
+                            const std::vector<double>& basis)
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    const PetscInt row = 3 * i + c;
+    for (std::size_t j = 0; j < cell_dofs.size(); ++j)
+    {
+      const PetscInt col = 3 * cell_dofs[j] + c;
+      const PetscScalar val = basis[j];
+      if (val != 0.0)
+        PETSC_CHECK(MatSetValues(P, 1, &row, 1, &col, &val, INSERT_VALUES));
     }
   }
-  MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY);
-  return P;
+}
+
+/// The InputError for node X of face A whose image y lies in no candidate cell.
+InputError unmapped_node(const generated::PartnerInfo& info, const double* X,
+                         const std::array<double, 3>& y)
+{
+  return InputError(fmt::format(
+      "energy term '{}': the map g sends the node ({:.6g}, {:.6g}, {:.6g}) m of face A ({}) to "
+      "({:.6g}, {:.6g}, {:.6g}) m, which is in no cell touching face B ({}); check the map "
+      "keys {} and {}", info.term, X[0], X[1], X[2], info.face_a, y[0], y[1], y[2], info.face_b,
+      key_of(info.map_matrix), key_of(info.map_shift)));
+}
+} // namespace
+
+Mat build_partner_interpolation(const fem::FunctionSpace& V,
+                                const mesh::MeshTags<std::int32_t>& facets,
+                                const generated::PartnerInfo& info, const AffineMap& g)
+{
+  auto mesh = V.mesh();
+  require_serial(mesh->comm(), info.term);
+  const auto faces = partner_faces(facets, info);
+  const CandidateCells candidates = candidate_cells(*mesh, faces[1]);
+  const auto& geom = mesh->geometry();
+  const std::size_t nn = geom.dofmap().links(candidates.cells[0]).size();
+  auto dofmap = V.dofmap();
+  if (static_cast<std::size_t>(dofmap->cell_dofs(candidates.cells[0]).size()) != nn)
+    throw std::logic_error("partner field: geometry and displacement degrees differ");
+
+  // Rows: the nodes of face A (blocked dof indices).
+  const auto nodes_a = fem::locate_dofs_topological(V, mesh->topology().dim() - 1, faces[0]);
+  const auto X = V.tabulate_dof_coordinates(false);
+  PetscMat P = create_interpolation_matrix(mesh->comm(), dofmap->index_map->size_local() * 3, nn);
+  std::vector<double> basis(geom.cmap().tabulate_shape(0, 1)[2]);
+  for (auto i : nodes_a)
+  {
+    const std::array<double, 3> y = apply_map(g, &X[3 * i]);
+    const ImagePoint image = locate_image(geom, candidates, y);
+    if (image.outside > 1e-3)
+      throw unmapped_node(info, &X[3 * i], y);
+    geom.cmap().tabulate(0, std::span<const double>(image.xi.data(), 3), {1, 3}, basis);
+    set_interpolation_rows(P.get(), i, dofmap->cell_dofs(image.cell), basis);
+  }
+  PETSC_CHECK(MatAssemblyBegin(P.get(), MAT_FINAL_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(P.get(), MAT_FINAL_ASSEMBLY));
+  return P.release();
 }
 
 PartnerField::PartnerField(generated::PartnerInfo info, std::shared_ptr<const fem::FunctionSpace> V)
     : _info(std::move(info)), _V(std::move(V)), _w(std::make_shared<fem::Function<T>>(_V))
 {
   _w->name = _info.coefficient;
-}
-
-PartnerField::~PartnerField()
-{
-  destroy(_P);
-  destroy(_Auw);
-  destroy(_Aww);
-  if (_bw)
-    VecDestroy(&_bw);
 }
 
 void PartnerField::set_forms(std::shared_ptr<fem::Form<T>> Ew, std::shared_ptr<fem::Form<T>> Euw,
@@ -218,54 +267,56 @@ void PartnerField::update(const fem::Function<T>& u, const mesh::MeshTags<std::i
 {
   if (!_P || g != _map)
   {
-    destroy(_P);
-    _P = build_partner_interpolation(*_V, facets, _info, g);
+    _P.reset();
+    _P = PetscMat(build_partner_interpolation(*_V, facets, _info, g));
     _map = g;
   }
   // w = P u
-  Vec ux = la::petsc::create_vector_wrap(*u.x());
-  Vec wx = la::petsc::create_vector_wrap(*_w->x());
-  MatMult(_P, ux, wx);
-  VecDestroy(&ux);
-  VecDestroy(&wx);
+  PetscVec ux(la::petsc::create_vector_wrap(*u.x()));
+  PetscVec wx(la::petsc::create_vector_wrap(*_w->x()));
+  PETSC_CHECK(MatMult(_P.get(), ux.get(), wx.get()));
   _w->x()->scatter_fwd();
 }
 
 void PartnerField::add_gradient(Vec b, double s)
 {
   if (!_bw)
-    _bw = la::petsc::create_vector(*_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
-  assemble_ghosted(_bw, *_Ew);
-  VecScale(_bw, s);
-  MatMultTransposeAdd(_P, _bw, b, b); // b = b + P^T (s E_w)
+    _bw = PetscVec(la::petsc::create_vector(*_V->dofmap()->index_map, _V->dofmap()->index_map_bs()));
+  assemble_ghosted(_bw.get(), *_Ew);
+  PETSC_CHECK(VecScale(_bw.get(), s));
+  PETSC_CHECK(MatMultTransposeAdd(_P.get(), _bw.get(), b, b)); // b = b + P^T (s E_w)
 }
+
+namespace
+{
+/// A = a (a bilinear form, no constraints), the matrix created at the first call.
+void assemble_into(PetscMat& A, const fem::Form<T>& a)
+{
+  if (!A)
+    A = PetscMat(fem::petsc::create_matrix(a, "aij"));
+  PETSC_CHECK(MatZeroEntries(A.get()));
+  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A.get(), ADD_VALUES), a, {});
+  PETSC_CHECK(MatAssemblyBegin(A.get(), MAT_FINAL_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(A.get(), MAT_FINAL_ASSEMBLY));
+}
+} // namespace
 
 Mat PartnerField::hessian_coupling(std::span<const std::int8_t> constrained)
 {
-  auto assemble = [](Mat& A, const fem::Form<T>& a)
-  {
-    if (!A)
-      A = fem::petsc::create_matrix(a, "aij");
-    MatZeroEntries(A);
-    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), a, {});
-    MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
-  };
-  assemble(_Auw, *_Euw);
-  assemble(_Aww, *_Eww);
-  Mat K, KT, Q;
-  MatMatMult(_Auw, _P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &K); // E_uw P
-  MatTranspose(K, MAT_INITIAL_MATRIX, &KT);                     // P^T E_wu
-  MatPtAP(_Aww, _P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &Q);     // P^T E_ww P
-  MatAXPY(K, 1.0, KT, DIFFERENT_NONZERO_PATTERN);
-  MatAXPY(K, 1.0, Q, DIFFERENT_NONZERO_PATTERN);
-  MatDestroy(&KT);
-  MatDestroy(&Q);
+  assemble_into(_Auw, *_Euw);
+  assemble_into(_Aww, *_Eww);
+  PetscMat K, KT, Q;
+  PETSC_CHECK(MatMatMult(_Auw.get(), _P.get(), MAT_INITIAL_MATRIX, PETSC_DEFAULT, K.out())); // E_uw P
+  PETSC_CHECK(MatTranspose(K.get(), MAT_INITIAL_MATRIX, KT.out()));                          // P^T E_wu
+  PETSC_CHECK(MatPtAP(_Aww.get(), _P.get(), MAT_INITIAL_MATRIX, PETSC_DEFAULT, Q.out()));    // P^T E_ww P
+  PETSC_CHECK(MatAXPY(K.get(), 1.0, KT.get(), DIFFERENT_NONZERO_PATTERN));
+  PETSC_CHECK(MatAXPY(K.get(), 1.0, Q.get(), DIFFERENT_NONZERO_PATTERN));
   std::vector<PetscInt> rows;
   for (std::size_t i = 0; i < constrained.size(); ++i)
     if (constrained[i])
       rows.push_back(static_cast<PetscInt>(i));
-  MatZeroRowsColumns(K, static_cast<PetscInt>(rows.size()), rows.data(), 0.0, nullptr, nullptr);
-  return K;
+  PETSC_CHECK(MatZeroRowsColumns(K.get(), static_cast<PetscInt>(rows.size()), rows.data(), 0.0,
+                                 nullptr, nullptr));
+  return K.release();
 }
 } // namespace breastsim

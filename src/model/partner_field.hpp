@@ -13,6 +13,7 @@
 // points keep the same reference-cell coordinates); rebuilt only when G or t
 // change. Serial only: refuses with an InputError on more than one rank.
 #include "breastsim_registry.hpp"
+#include "petsc.hpp"
 #include <array>
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
@@ -43,7 +44,6 @@ class PartnerField
 {
 public:
   PartnerField(generated::PartnerInfo info, std::shared_ptr<const dolfinx::fem::FunctionSpace> V);
-  ~PartnerField();
   PartnerField(const PartnerField&) = delete;
   PartnerField& operator=(const PartnerField&) = delete;
 
@@ -62,15 +62,15 @@ public:
   /// dofs marked in `constrained` zeroed. Caller owns.
   Mat hessian_coupling(std::span<const std::int8_t> constrained);
   /// P (nullptr before the first update). Owned by this object.
-  Mat interpolation() const { return _P; }
+  Mat interpolation() const { return _P.get(); }
 
 private:
   generated::PartnerInfo _info;
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
   std::shared_ptr<dolfinx::fem::Function<T>> _w;
   std::shared_ptr<dolfinx::fem::Form<T>> _Ew, _Euw, _Eww;
-  Mat _P = nullptr, _Auw = nullptr, _Aww = nullptr;
-  Vec _bw = nullptr;
+  PetscMat _P, _Auw, _Aww; ///< P, E_uw, E_ww
+  PetscVec _bw;            ///< E_w
   AffineMap _map{};
 };
 } // namespace breastsim
