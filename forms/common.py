@@ -72,6 +72,40 @@ def param(key, unit, default, lo, hi, doc, lo_open=False, shape=()):
                 lo_open=lo_open, shape=list(shape))
 
 
+def candidate(parameter, unit, typical, physics, sets, flags=None):
+    """Metadata of a diagnosis candidate (docs/DIAGNOSE.md): the term switched
+    on with one scalar q >= 0, nested in the model (q = 0 reproduces the model
+    without the term).
+
+    parameter: the reported name of q, e.g. "ligament.k" (or a derived
+    quantity such as "base.compliance"); unit; typical: the size of a clearly
+    visible effect [unit]; physics: what the term stands for, in plain words.
+    sets: {Constant name of the term: rule}, how q sets the case, in order:
+    "q" (the parameter = q), "1/q" (= 1/q), "keep_ratio" (keeps its ratio to
+    the first one, which is set from q). flags: {case key: bool} set with the
+    term switched on (e.g. {"base.fixed": False}); the candidate also applies
+    when the term is on but a flag has the other value.
+    """
+    return dict(parameter=parameter, unit=unit, typical=typical, physics=physics,
+                sets=dict(sets), flags=dict(flags or {}))
+
+
+def fit_alias(target, role):
+    """A short name of `--fit` (calibrate, diagnose) for one parameter.
+
+    target: the Constant name of the term's parameter (in GEOMETRY_FIT: a case
+    key); role: "stiffness", "density" or "shape". The role sets the search
+    bounds (shape: p0 / 1.25 .. 1.25 p0, else p0 / 30 .. 30 p0) and the
+    identifiability rule (a density cannot be fitted with a stiffness: the
+    equilibrium depends on their ratio only).
+    """
+    return dict(target=target, role=role)
+
+
+# The neutral shape of the mesh belongs to no term: its --fit names.
+GEOMETRY_FIT = {"R": fit_alias("geometry.R", "shape"), "H": fit_alias("geometry.H", "shape")}
+
+
 def neo_hooke(Fm, Jm, mu_, lmbda_, dim):
     """Compressible neo-Hookean density of the paper's eq. (5):
     W = mu/2 (tr(F F^T) - dim - 2 ln J) + lambda/2 (J - 1)^2."""

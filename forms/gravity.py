@@ -4,7 +4,7 @@
 g_vec is set by the posture (SPEC.md: g_vec = -g (cos(theta) e_z + sin(theta) e_y));
 load in [0, 1] is the load factor driven by the load stepping.
 """
-from common import Constant, domain, dot, dx_load, u, param
+from common import Constant, domain, dot, dx_load, u, fit_alias, param
 
 NAME = "gravity"
 rho = Constant(domain)
@@ -17,5 +17,6 @@ PARAMETERS = {
                    "gravity vector in the body frame (set by the posture)", shape=(3,)),
     "load": param("", "1", 1.0, 0.0, 1.0, "load factor (set by load stepping)"),
 }
+FIT = {"rho": fit_alias("rho", "density")}
 
 ENERGY = -rho * load * dot(g_vec, u) * dx_load

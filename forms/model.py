@@ -5,9 +5,9 @@
 Each term is compiled as its own ffcx module (forms/term_forms.py) and the
 C++ side composes Pi from their kernels behind the runtime switches on_k.
 This module collects what the C++ registry needs (forms/gen_registry.py):
-the parameters with their case keys, the default switches and the partner
-fields, and refuses a Constant name used by two terms (the C++ side binds
-Constants by name).
+the parameters with their case keys, the default switches, the partner
+fields, the diagnosis candidates and the --fit names, and refuses a Constant
+name used by two terms (the C++ side binds Constants by name).
 """
 import importlib
 
@@ -15,7 +15,7 @@ from ufl import Constant as _Constant
 from ufl import Coefficient as _Coefficient
 from ufl.algorithms import extract_coefficients as _extract_coefficients
 
-from common import domain, TAGS  # noqa: F401
+from common import domain, GEOMETRY_FIT, TAGS  # noqa: F401
 from registry import TERMS
 
 _modules = [importlib.import_module(name) for name in TERMS]
@@ -65,3 +65,66 @@ for _m in _modules:
                                f"is also used by term '{_o.NAME}'")
     PARTNERS[_m.NAME] = dict(_p)
 
+
+# Diagnosis candidates (calibrate/diagnose/candidates.hpp): a term may declare
+# CANDIDATE = candidate(...) (common.py). Collected with the case keys its q sets.
+CANDIDATES = {}
+_RULES = ("q", "1/q", "keep_ratio")
+
+
+def _keyed_scalar(m, name, what):
+    """The case key of the scalar parameter `name` of term module m."""
+    p = m.PARAMETERS.get(name)
+    if p is None or not p["key"] or p["shape"]:
+        raise RuntimeError(f"term '{m.NAME}': {what} '{name}' is not a scalar parameter of the term "
+                           "with a case key")
+    return p["key"]
+
+
+for _m in _modules:
+    _c = getattr(_m, "CANDIDATE", None)
+    if _c is None:
+        continue
+    _where = f"term '{_m.NAME}': CANDIDATE"
+    if not (isinstance(_c.get("typical"), (int, float)) and _c["typical"] > 0):
+        raise RuntimeError(f"{_where}: typical = {_c.get('typical')!r} must be a number > 0")
+    for _name in ("parameter", "unit", "physics"):
+        if not isinstance(_c.get(_name), str) or (_name != "unit" and not _c[_name]):
+            raise RuntimeError(f"{_where}: {_name} must be a non-empty string")
+    if not _c["sets"]:
+        raise RuntimeError(f"{_where}: sets is empty (which parameter does q set?)")
+    _sets = []
+    for _i, (_name, _rule) in enumerate(_c["sets"].items()):
+        if _rule not in _RULES or (_i == 0 and _rule == "keep_ratio"):
+            raise RuntimeError(f"{_where}: rule '{_rule}' of '{_name}' is not allowed (allowed: "
+                               "'q', '1/q'; after the first also 'keep_ratio')")
+        _sets.append((_keyed_scalar(_m, _name, "CANDIDATE sets"), _rule))
+    for _key, _value in _c["flags"].items():
+        if not isinstance(_key, str) or not isinstance(_value, bool):
+            raise RuntimeError(f"{_where}: flags must map case keys to True/False, got {_key!r}: {_value!r}")
+    CANDIDATES[_m.NAME] = dict(parameter=_c["parameter"], unit=_c["unit"], typical=float(_c["typical"]),
+                               physics=_c["physics"], sets=_sets, flags=list(_c["flags"].items()))
+
+# --fit names (calibrate/fit/fit_parameters.hpp): a term's FIT = {name: fit_alias(...)}
+# names its parameters, common.GEOMETRY_FIT the neutral shape. Each name and each
+# case key once.
+FIT_ALIASES = {}
+_ROLES = ("stiffness", "density", "shape")
+
+
+def _add_alias(alias, key, role, term):
+    if alias in FIT_ALIASES:
+        raise RuntimeError(f"--fit name '{alias}' declared twice (terms '{FIT_ALIASES[alias]['term']}' "
+                           f"and '{term}')")
+    if any(a["key"] == key for a in FIT_ALIASES.values()):
+        raise RuntimeError(f"case key '{key}' has two --fit names")
+    if role not in _ROLES:
+        raise RuntimeError(f"--fit name '{alias}': role '{role}' is not one of {', '.join(_ROLES)}")
+    FIT_ALIASES[alias] = dict(key=key, role=role, term=term)
+
+
+for _m in _modules:
+    for _alias, _f in getattr(_m, "FIT", {}).items():
+        _add_alias(_alias, _keyed_scalar(_m, _f["target"], f"FIT '{_alias}'"), _f["role"], _m.NAME)
+for _alias, _f in GEOMETRY_FIT.items():
+    _add_alias(_alias, _f["target"], _f["role"], "")

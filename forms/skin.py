@@ -19,8 +19,8 @@ where n(l1) is the natural width, dW_s/dl2 = 0:
     n = (L l1 + sqrt(L^2 l1^2 + 4 mu (mu + L l1^2))) / (2 (mu + L l1^2)).
 The relaxed energy is C1 and equals W_s wherever the skin is in tension.
 """
-from common import (Constant, F, J, N, domain, dot, ds, inv, ln, outer_np,
-                    param, sqrt, tr)
+from common import (Constant, F, J, N, candidate, domain, dot, ds, fit_alias, inv, ln,
+                    outer_np, param, sqrt, tr)
 from ufl import conditional, gt, lt, max_value
 
 NAME = "skin"
@@ -37,6 +37,10 @@ PARAMETERS = {
                                "1: relaxed tension-field membrane (wrinkles, no compression); "
                                "0: plain neo-Hookean membrane"),
 }
+FIT = {"mu_s": fit_alias("mu_s", "stiffness"), "lambda_s": fit_alias("lmbda_s", "stiffness")}
+CANDIDATE = candidate("skin.mu", "Pa", 2e4,
+                      "a skin membrane (mu_s, lambda_s, thickness) on the outer surface",
+                      sets={"mu_s": "q", "lmbda_s": "keep_ratio"})
 
 
 def membrane_density(l1, l2):

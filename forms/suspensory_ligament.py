@@ -6,7 +6,7 @@ toward its neutral position by a bed of springs,
 k_l [Pa/m] per unit reference skin area (SPEC.md frame: Z > 0 is the upper
 pole when standing). k_l = 0 reproduces the model without ligaments.
 """
-from common import Constant, X, domain, dot, ds, u, param
+from common import Constant, X, candidate, domain, dot, ds, u, param
 from ufl import conditional, gt
 
 NAME = "suspensory_ligament"
@@ -17,6 +17,10 @@ PARAMETERS = {
     "k_l": param("ligament.k", "Pa/m", 2.0e3, 0.0, 1e12,
                  "stiffness of the suspensory ligaments tethering the upper-pole skin (Z > 0)"),
 }
+CANDIDATE = candidate("ligament.k", "Pa/m", 2e3,
+                      "suspensory (Cooper's) ligaments: the upper-pole skin is tethered toward its "
+                      "neutral position",
+                      sets={"k_l": "q"})
 
 upper_pole = conditional(gt(X[2], 0), 1.0, 0.0)
 ENERGY = k_l / 2 * upper_pole * dot(u, u) * ds("skin", "surface_quad")

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <tuple>
 
 using namespace breastsim;
 using namespace breastsim::calibration;
@@ -174,6 +175,43 @@ TEST(CalibrateFit, DensityWithStiffnessIsRefusedAsUnidentifiable)
   EXPECT_THROW(parse_fit("mu,nu", c), InputError);
   EXPECT_THROW(parse_fit("mu,mu", c), InputError);
   EXPECT_THROW(parse_fit("", c), InputError);
+}
+
+TEST(CalibrateFit, AliasesAreWhatTheFormsDeclare)
+{
+  // FIT of forms/tissue.py, gravity.py, skin.py, base_springs.py and
+  // GEOMETRY_FIT of forms/common.py, in the order of forms/registry.py.
+  using generated::FitRole;
+  const std::vector<std::tuple<std::string, std::string, FitRole>> declared = {
+      {"mu", "tissue.mu", FitRole::stiffness},     {"lambda", "tissue.lambda", FitRole::stiffness},
+      {"rho", "tissue.rho", FitRole::density},     {"mu_s", "skin.mu", FitRole::stiffness},
+      {"lambda_s", "skin.lambda", FitRole::stiffness}, {"c", "base.c", FitRole::stiffness},
+      {"R", "geometry.R", FitRole::shape},         {"H", "geometry.H", FitRole::shape}};
+  const auto& aliases = generated::fit_aliases();
+  ASSERT_EQ(aliases.size(), declared.size());
+  for (std::size_t i = 0; i < aliases.size(); ++i)
+  {
+    EXPECT_EQ(aliases[i].alias, std::get<0>(declared[i]));
+    EXPECT_EQ(aliases[i].key, std::get<1>(declared[i]));
+    EXPECT_EQ(aliases[i].role, std::get<2>(declared[i]));
+    EXPECT_NO_THROW(key_info(aliases[i].key)) << aliases[i].key; // a case key
+  }
+  // An alias resolves, through --fit too; an unknown one lists them all.
+  EXPECT_EQ(fit_alias("lambda_s").key, "skin.lambda");
+  const Config c;
+  const auto fit = parse_fit("lambda_s,H", c);
+  EXPECT_EQ(fit[0].key, "skin.lambda");
+  EXPECT_EQ(fit[0].unit, "Pa");
+  EXPECT_EQ(fit[1].role, FitRole::shape);
+  try
+  {
+    fit_alias("nu");
+    FAIL() << "unknown alias accepted";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("allowed: " + fit_alias_names()), std::string::npos) << e.what();
+  }
 }
 
 TEST(CalibrateFit, BoundsAndLogCoordinates)

@@ -3,6 +3,7 @@
 // 4 mm in the long test) with Gaussian noise of 0.5 mm; the fits use coarser
 // meshes (10-16 mm), morphed when R and H change.
 #include "calibrate.hpp"
+#include "calibration_output.hpp"
 #include "checkpoint.hpp"
 #include "errors.hpp"
 #include "objective.hpp"
@@ -39,7 +40,7 @@ const Measurements& synthetic_data()
 }
 
 /// The default case (truth) on a 4 mm mesh, noise 0.5 mm, sigma 1 mm
-/// (about 25 s to generate: used by the long test only).
+/// (slow to generate: used by the long test only).
 const Measurements& fine_synthetic_data()
 {
   static const Measurements m = []

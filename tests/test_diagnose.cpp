@@ -1,5 +1,7 @@
-// Missing-physics diagnosis (issue 7): the pieces it is made of. The
-// end-to-end proof on concealed data is tests/cli/diagnose.sh.
+// Missing-physics diagnosis: the pieces it is made of. The end-to-end proof
+// on concealed data is tests/cli/diagnose.sh.
+#include "breastsim_registry.hpp"
+#include "candidate_scores.hpp"
 #include "candidates.hpp"
 #include "diagnose.hpp"
 #include "errors.hpp"
@@ -7,6 +9,7 @@
 #include "least_squares.hpp"
 #include "recording.hpp"
 #include "surface_distance.hpp"
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -198,4 +201,80 @@ TEST(Candidates, EachIsNestedAtItsNullValue)
   EXPECT_FALSE(springs.flag("base.fixed"));
   EXPECT_DOUBLE_EQ(springs.number("base.c"), 1e6);
   EXPECT_THROW(candidate("dark_matter"), InputError);
+}
+
+TEST(Candidates, TableIsWhatTheFormsDeclare)
+{
+  // The CANDIDATE of each term in forms/ (skin.py, base_springs.py,
+  // suspensory_ligament.py, gland_core.py), in the order of forms/registry.py.
+  struct Declared
+  {
+    std::string name, parameter, unit, first_key;
+    double typical;
+  };
+  const std::vector<Declared> declared = {{"skin", "skin.mu", "Pa", "skin.mu", 2e4},
+                                          {"base_springs", "base.compliance", "m/Pa", "base.c", 5e-6},
+                                          {"suspensory_ligament", "ligament.k", "Pa/m", "ligament.k", 2e3},
+                                          {"gland_core", "gland.excess", "1", "gland.excess", 2.0}};
+  const auto& lib = candidate_library();
+  ASSERT_EQ(lib.size(), declared.size());
+  for (std::size_t i = 0; i < lib.size(); ++i)
+  {
+    EXPECT_EQ(lib[i].name, declared[i].name);
+    EXPECT_EQ(lib[i].parameter, declared[i].parameter);
+    EXPECT_EQ(lib[i].unit, declared[i].unit);
+    EXPECT_DOUBLE_EQ(lib[i].typical, declared[i].typical);
+    ASSERT_FALSE(lib[i].sets.empty());
+    EXPECT_EQ(lib[i].sets[0].key, declared[i].first_key);
+    EXPECT_FALSE(lib[i].physics.empty());
+  }
+  EXPECT_EQ(candidate_names(), "skin, base_springs, suspensory_ligament, gland_core");
+  // Every key a candidate sets is a parameter of its own term, and every
+  // flag a case key; the candidate is a registered term.
+  for (const auto& c : lib)
+  {
+    const auto& terms = generated::terms();
+    EXPECT_TRUE(std::any_of(terms.begin(), terms.end(), [&](const auto& t) { return t.name == c.name; }))
+        << c.name;
+    for (const auto& s : c.sets)
+    {
+      const auto& ps = generated::parameters();
+      EXPECT_TRUE(std::any_of(ps.begin(), ps.end(),
+                              [&](const auto& p) { return p.key == s.key && p.term == c.name; }))
+          << c.name << ": " << s.key;
+    }
+    for (const auto& [key, value] : c.flags)
+      EXPECT_NO_THROW(key_info(key)) << c.name << ": " << key;
+  }
+  ASSERT_EQ(candidate("base_springs").flags.size(), 1u);
+  EXPECT_EQ(candidate("base_springs").flags[0].first, "base.fixed");
+  EXPECT_EQ(candidate("base_springs").sets[0].rule, generated::CandidateRule::inverse);
+  ASSERT_EQ(candidate("skin").sets.size(), 2u);
+  EXPECT_EQ(candidate("skin").sets[1].key, "skin.lambda");
+  EXPECT_EQ(candidate("skin").sets[1].rule, generated::CandidateRule::keep_ratio);
+}
+
+TEST(Candidates, RulesSetTheCaseKeys)
+{
+  // q sets the keys by the declared rules: skin keeps lambda_s / mu_s, the
+  // base springs get c = 1/q and leave the fixed base.
+  Config c;
+  c.set("terms.skin", false);
+  c.set("skin.mu", 1000.0);
+  c.set("skin.lambda", 3000.0);
+  const Config skin = candidate("skin").with(c, 5000.0);
+  EXPECT_TRUE(skin.flag("terms.skin"));
+  EXPECT_DOUBLE_EQ(skin.number("skin.mu"), 5000.0);
+  EXPECT_DOUBLE_EQ(skin.number("skin.lambda"), 3.0 * 5000.0);
+  Config on;
+  EXPECT_FALSE(candidate("base_springs").applicable(on)); // springs on, base free
+  on.set("base.fixed", true);
+  EXPECT_TRUE(candidate("base_springs").applicable(on));  // a flag differs
+  const Config springs = candidate("base_springs").with(on, 2e-6);
+  EXPECT_FALSE(springs.flag("base.fixed"));
+  EXPECT_DOUBLE_EQ(springs.number("base.c"), 1.0 / 2e-6);
+  const Config lig = candidate("suspensory_ligament").with(Config(), 1234.0);
+  EXPECT_TRUE(lig.flag("terms.suspensory_ligament"));
+  EXPECT_DOUBLE_EQ(lig.number("ligament.k"), 1234.0);
+  EXPECT_THROW(candidate("gland_core").with(Config(), 0.0), std::invalid_argument);
 }

@@ -1,16 +1,15 @@
 #pragma once
-// The library of physics a diagnosis may find missing (issue 7). Each
-// candidate is one registered energy term plus one scalar parameter q >= 0,
-// nested in the current model: q = 0 reproduces the model without it.
-//   base_springs        q = 1/c, compliance of the Chassaignac space [m/Pa]
-//                       (q = 0: the fixed base; q > 0: springs c = 1/q)
-//   skin                q = mu_s [Pa] (lambda_s = mu_s x the case's ratio)
-//   suspensory_ligament q = k_l [Pa/m] on the upper-pole skin
-//   gland_core          q = m_g, extra stiffness of the central gland
-// Adding a candidate: one UFL term (forms/) and one entry in the table of
-// candidates.cpp.
+// The library of physics a diagnosis may find missing: every energy term
+// that declares a CANDIDATE in forms/ (forms/common.py candidate()), read from
+// the generated registry. Each candidate is one registered term plus one
+// scalar parameter q >= 0, nested in the current model: q = 0 reproduces the
+// model without it (e.g. base_springs: q = 1/c, the compliance, q = 0 the
+// fixed base; skin: q = mu_s, lambda_s keeping its ratio to mu_s).
+// Adding a candidate: a CANDIDATE in the term's forms/<term>.py; no C++.
+#include "breastsim_registry.hpp"
 #include "config.hpp"
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace breastsim::calibration
@@ -22,14 +21,22 @@ struct Candidate
   std::string unit;
   std::string physics;   ///< what it stands for, in plain words
   double typical = 1;    ///< size of a clearly visible effect [unit]
+  std::vector<generated::CandidateSetting> sets;   ///< the case keys q sets, in order
+  std::vector<std::pair<std::string, bool>> flags; ///< case flags set with the term on
 
-  /// True if the current case leaves this physics out (the term is off).
+  /// True if the current case leaves this physics out (the term is off, or
+  /// one of its flags has the other value, e.g. base.fixed = true).
   bool applicable(const Config& current) const;
   /// The current case with this physics switched on at q > 0.
   Config with(const Config& current, double q) const;
 };
 
+/// Every term's CANDIDATE, in the order of forms/registry.py.
 const std::vector<Candidate>& candidate_library();
 /// Throws InputError for an unknown name (lists the library).
 const Candidate& candidate(const std::string& name);
+/// The candidates' names, comma separated (for help texts and messages).
+std::string candidate_names();
+/// "name: parameter [unit]; ..." of every candidate (help texts).
+std::string candidate_parameters();
 } // namespace breastsim::calibration

@@ -1,4 +1,6 @@
 #include "diagnosis_output.hpp"
+#include "diagnose.hpp"
+#include "log.hpp"
 #include "output.hpp"
 #include "viewer.hpp"
 #include <algorithm>
@@ -128,5 +130,18 @@ void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const
   }
   render_pictures(dir, {}, comm);
   write_view_page(dir, {}, comm);
+}
+
+std::string run_diagnosis(const Recording& rec, const Config& current, const DiagnoseOptions& o,
+                          const OutputTarget& out, MPI_Comm comm)
+{
+  OutputDir dir(out, comm);
+  const auto d = diagnose(rec, current, o, comm);
+  write_diagnosis(dir.path(), d, rec, comm);
+  dir.commit();
+  if (!log::is_root())
+    return "";
+  return report_text(d, rec) + "results written to " + out.path().string()
+         + "/ (diagnosis.json, diagnosis.txt, residual maps, case.diagnosed.toml)\n";
 }
 } // namespace breastsim::calibration

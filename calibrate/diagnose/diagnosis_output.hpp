@@ -8,12 +8,21 @@
 //   surface_<posture>.json           the final model's skin with |residual| fields,
 //   view_<posture>.png, overview.png and index.html (the 3D page; colour by
 //                                    displacement or |residual| before/after)
-#include "diagnose.hpp"
+#include "diagnosis.hpp"
+#include "output_target.hpp"
 #include <filesystem>
+#include <mpi.h>
+#include <string>
 
 namespace breastsim::calibration
 {
 /// Collective (rank 0 writes; the pictures run under python3 on rank 0).
 void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const Recording& rec,
                      MPI_Comm comm);
+
+/// Collective. `breastsim diagnose`: diagnose `rec` against `current` and
+/// write every file into `out` (staged, replaced only when complete); the
+/// printable report on rank 0 ("" on the other ranks).
+std::string run_diagnosis(const Recording& rec, const Config& current, const DiagnoseOptions& o,
+                          const OutputTarget& out, MPI_Comm comm);
 } // namespace breastsim::calibration

@@ -1,5 +1,6 @@
-// The diagnosis as JSON and as plain words (declared in diagnose.hpp).
-#include "diagnose.hpp"
+// The diagnosis as JSON and as plain words (diagnosis_report.hpp).
+#include "diagnosis_report.hpp"
+#include "candidates.hpp"
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>

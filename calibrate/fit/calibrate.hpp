@@ -5,7 +5,6 @@
 #include "fit_parameters.hpp"
 #include "measurements.hpp"
 #include "optimizer.hpp"
-#include "output_target.hpp"
 #include <filesystem>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -38,22 +37,7 @@ struct CalibrationResult
   std::vector<nlohmann::json> surfaces;
 };
 
-struct CalibrationOutputOptions
-{
-  bool pictures = true;            ///< PNGs (calibration_plots.py, render.py)
-  std::string picture_size = "800x600";
-};
-
 CalibrationResult calibrate(const Config& start, const Measurements& data,
                             const std::vector<FitParameter>& fit, const CalibrateOptions& o,
                             MPI_Comm comm);
-
-/// Write calibrated.toml, report.json, surface_<posture>.json and (with
-/// `pictures`) misfit_history.png, measurements.png, view_<posture>.png and
-/// overview.png into `out` (staged: replaced only when all are written).
-void write_calibration(const CalibrationResult& r, const OutputTarget& out, MPI_Comm comm,
-                       const CalibrationOutputOptions& o = {});
-
-/// Printable summary: fitted values with intervals and flags.
-std::string calibration_table(const nlohmann::json& report);
 } // namespace breastsim::calibration

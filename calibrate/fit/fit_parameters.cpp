@@ -10,21 +10,29 @@ namespace breastsim::calibration
 {
 namespace
 {
-/// Bound factor for material parameters and spring stiffness.
+/// Bound factor for stiffnesses and densities.
 constexpr double material_span = 30.0;
 /// Bound factor for the neutral shape R, H.
 constexpr double geometry_span = 1.25;
 
-bool is_geometry(const std::string& name) { return name == "R" || name == "H"; }
+bool is_shape(const FitParameter& p) { return p.role == generated::FitRole::shape; }
 } // namespace
 
-const std::vector<std::pair<std::string, std::string>>& fit_names()
+std::string fit_alias_names()
 {
-  static const std::vector<std::pair<std::string, std::string>> names
-      = {{"mu", "tissue.mu"},  {"lambda", "tissue.lambda"}, {"mu_s", "skin.mu"},
-         {"lambda_s", "skin.lambda"}, {"c", "base.c"},      {"R", "geometry.R"},
-         {"H", "geometry.H"},    {"rho", "tissue.rho"}};
+  std::string names;
+  for (const auto& a : generated::fit_aliases())
+    names += (names.empty() ? "" : ", ") + a.alias;
   return names;
+}
+
+const generated::FitAliasInfo& fit_alias(const std::string& name)
+{
+  for (const auto& a : generated::fit_aliases())
+    if (a.alias == name)
+      return a;
+  throw InputError(
+      fmt::format("--fit: unknown parameter '{}' (allowed: {})", name, fit_alias_names()));
 }
 
 std::vector<FitParameter> parse_fit(const std::string& list, const Config& start)
@@ -37,25 +45,20 @@ std::vector<FitParameter> parse_fit(const std::string& list, const Config& start
   {
     name.erase(0, name.find_first_not_of(" \t"));
     name.erase(name.find_last_not_of(" \t") + 1);
-    auto it = std::find_if(fit_names().begin(), fit_names().end(),
-                           [&](const auto& p) { return p.first == name; });
-    if (it == fit_names().end())
-      throw InputError(fmt::format("--fit: unknown parameter '{}' (allowed: mu, lambda, mu_s, "
-                                   "lambda_s, c, R, H, rho)",
-                                   name));
+    const generated::FitAliasInfo& alias = fit_alias(name);
     if (!seen.insert(name).second)
       throw InputError(fmt::format("--fit: parameter '{}' is given twice", name));
-    const KeyInfo& k = key_info(it->second);
+    const KeyInfo& k = key_info(alias.key);
     const double p0 = start.number(k.key);
     if (!(p0 > 0))
       throw InputError(fmt::format("--fit {}: the starting value {} = {} must be > 0 (the fit "
                                    "works with ln({}))",
                                    name, k.key, p0, name));
-    const double span = is_geometry(name) ? geometry_span : material_span;
+    const double span = alias.role == generated::FitRole::shape ? geometry_span : material_span;
     // Stay strictly inside the schema's range (open lower bounds, e.g. (0, ...]).
     const double lo = std::max(p0 / span, k.lo > 0 ? k.lo * (1 + 1e-9) : 0.0);
     const double hi = std::min(p0 * span, k.hi);
-    fit.push_back({name, k.key, k.unit, lo, hi});
+    fit.push_back({name, k.key, k.unit, lo, hi, alias.role});
   }
   if (fit.empty())
     throw InputError("--fit: no parameter given (e.g. --fit mu,c)");
@@ -65,14 +68,18 @@ std::vector<FitParameter> parse_fit(const std::string& list, const Config& start
 
 void check_identifiable(const std::vector<FitParameter>& fit)
 {
-  const bool rho = std::any_of(fit.begin(), fit.end(), [](const auto& p) { return p.name == "rho"; });
+  const auto density = std::find_if(fit.begin(), fit.end(), [](const auto& p)
+                                    { return p.role == generated::FitRole::density; });
+  if (density == fit.end())
+    return;
   for (const auto& p : fit)
-    if (rho && p.name != "rho" && !is_geometry(p.name))
+    if (p.role == generated::FitRole::stiffness)
       throw InputError(fmt::format(
-          "--fit: 'rho' and '{}' cannot be fitted together: gravity shapes depend only on the "
-          "ratio of stiffness to density (dividing the energy by rho leaves W/rho - g.u), so only "
-          "{}/rho is identifiable. Keep tissue.rho as a measured input and fit the stiffnesses",
-          p.name, p.name));
+          "--fit: '{}' and '{}' cannot be fitted together: gravity shapes depend only on the "
+          "ratio of stiffness to density (dividing the energy by {} leaves W/{} - g.u), so only "
+          "{}/{} is identifiable. Keep {} as a measured input and fit the stiffnesses",
+          density->name, p.name, density->name, density->name, p.name, density->name,
+          density->key));
 }
 
 std::vector<double> to_log(const std::vector<FitParameter>& fit, const Config& c)
@@ -95,6 +102,6 @@ Config with_parameters(const Config& base, const std::vector<FitParameter>& fit,
 
 bool changes_geometry(const std::vector<FitParameter>& fit)
 {
-  return std::any_of(fit.begin(), fit.end(), [](const auto& p) { return is_geometry(p.name); });
+  return std::any_of(fit.begin(), fit.end(), is_shape);
 }
 } // namespace breastsim::calibration

@@ -14,6 +14,69 @@ double sum_squares(const std::vector<double>& r)
     s += x * x;
   return s;
 }
+
+/// J^T J and J^T r (n unknowns).
+void normal_equations(const Matrix& J, const std::vector<double>& r, std::size_t n, Matrix& A,
+                      std::vector<double>& g)
+{
+  A.assign(n, std::vector<double>(n, 0.0));
+  g.assign(n, 0.0);
+  for (std::size_t i = 0; i < r.size(); ++i)
+    for (std::size_t a = 0; a < n; ++a)
+    {
+      g[a] += J[i][a] * r[i];
+      for (std::size_t b = 0; b < n; ++b)
+        A[a][b] += J[i][a] * J[i][b];
+    }
+}
+
+/// Up to 8 damped steps (J^T J + lambda diag(J^T J)) dy = -J^T r from res.y,
+/// clamped to the bounds, until one decreases chi2 (lambda / 3 after it,
+/// x 4 after each rejected one); res moves there. max_step: the largest
+/// |dy| of the accepted step; decrease: its relative decrease of chi2.
+bool damped_step(const ResidualFunction& f, const Matrix& A, const std::vector<double>& g,
+                 const std::vector<double>& lo, const std::vector<double>& hi, LsqResult& res,
+                 double& lambda, double& max_step, double& decrease)
+{
+  const std::size_t n = g.size();
+  for (int attempt = 0; attempt < 8; ++attempt)
+  {
+    Matrix M = A;
+    for (std::size_t a = 0; a < n; ++a)
+      M[a][a] += lambda * std::max(A[a][a], 1e-12);
+    std::vector<double> minus_g(n), dy;
+    for (std::size_t a = 0; a < n; ++a)
+      minus_g[a] = -g[a];
+    if (!solve_dense(M, minus_g, dy))
+    {
+      lambda *= 4;
+      continue;
+    }
+    auto y1 = res.y;
+    max_step = 0;
+    for (std::size_t a = 0; a < n; ++a)
+    {
+      y1[a] = std::clamp(res.y[a] + dy[a], lo[a], hi[a]);
+      max_step = std::max(max_step, std::abs(y1[a] - res.y[a]));
+    }
+    if (max_step == 0)
+      return false;
+    const auto r1 = f(y1);
+    ++res.evaluations;
+    const double chi2 = sum_squares(r1);
+    if (chi2 < res.chi2)
+    {
+      decrease = (res.chi2 - chi2) / std::max(res.chi2, 1e-300);
+      res.y = y1;
+      res.r = r1;
+      res.chi2 = chi2;
+      lambda = std::max(lambda / 3, 1e-9);
+      return true;
+    }
+    lambda *= 4;
+  }
+  return false;
+}
 } // namespace
 
 bool solve_dense(Matrix A, std::vector<double> b, std::vector<double>& x)
@@ -90,67 +153,23 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
       res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations);
       have_J = true;
     }
-    Matrix A(n, std::vector<double>(n, 0.0));
-    std::vector<double> g(n, 0.0);
-    for (std::size_t i = 0; i < res.r.size(); ++i)
-      for (std::size_t a = 0; a < n; ++a)
-      {
-        g[a] += res.J[i][a] * res.r[i];
-        for (std::size_t b = 0; b < n; ++b)
-          A[a][b] += res.J[i][a] * res.J[i][b];
-      }
-    bool accepted = false;
-    double max_step = 0;
-    for (int attempt = 0; attempt < 8 && !accepted; ++attempt)
-    {
-      Matrix M = A;
-      for (std::size_t a = 0; a < n; ++a)
-        M[a][a] += lambda * std::max(A[a][a], 1e-12);
-      std::vector<double> minus_g(n), dy;
-      for (std::size_t a = 0; a < n; ++a)
-        minus_g[a] = -g[a];
-      if (!solve_dense(M, minus_g, dy))
-      {
-        lambda *= 4;
-        continue;
-      }
-      auto y1 = res.y;
-      max_step = 0;
-      for (std::size_t a = 0; a < n; ++a)
-      {
-        y1[a] = std::clamp(res.y[a] + dy[a], lo[a], hi[a]);
-        max_step = std::max(max_step, std::abs(y1[a] - res.y[a]));
-      }
-      if (max_step == 0)
-        break;
-      const auto r1 = f(y1);
-      ++res.evaluations;
-      const double chi2 = sum_squares(r1);
-      if (chi2 < res.chi2)
-      {
-        const double decrease = (res.chi2 - chi2) / std::max(res.chi2, 1e-300);
-        res.y = y1;
-        res.r = r1;
-        res.chi2 = chi2;
-        lambda = std::max(lambda / 3, 1e-9);
-        accepted = true;
-        have_J = false;
-        res.iterations = it + 1;
-        if (progress)
-          progress(res.iterations, res.chi2, res.y);
-        if (decrease < o.ftol_rel)
-        {
-          res.stop_reason = fmt::format("chi2 decreased by less than {:g} (relative)", o.ftol_rel);
-          it = o.max_iterations; // stop
-        }
-      }
-      else
-        lambda *= 4;
-    }
-    if (!accepted)
+    Matrix A;
+    std::vector<double> g;
+    normal_equations(res.J, res.r, n, A, g);
+    double max_step = 0, decrease = 0;
+    if (!damped_step(f, A, g, lo, hi, res, lambda, max_step, decrease))
     {
       res.stop_reason = "no step decreases chi2 (at a minimum within the bounds)";
       break;
+    }
+    have_J = false;
+    res.iterations = it + 1;
+    if (progress)
+      progress(res.iterations, res.chi2, res.y);
+    if (decrease < o.ftol_rel)
+    {
+      res.stop_reason = fmt::format("chi2 decreased by less than {:g} (relative)", o.ftol_rel);
+      it = o.max_iterations; // stop
     }
     if (max_step < o.xtol)
     {

@@ -1,6 +1,7 @@
 #include "recording_generator.hpp"
 #include "candidates.hpp"
 #include "errors.hpp"
+#include "fit_parameters.hpp"
 #include "log.hpp"
 #include "model_setup.hpp"
 #include "neutral_mesh.hpp"
@@ -84,8 +85,8 @@ Recording synthetic_recording(const Config& c, const RecordingOptions& o, MPI_Co
 
   Recording rec;
   rec.noise_sigma = o.noise > 0 ? o.noise : 1e-6;
-  rec.known = {{"R", truth.number("geometry.R")}, {"H", truth.number("geometry.H")},
-               {"rho", truth.number("tissue.rho")}};
+  for (const char* name : {"R", "H", "rho"}) // a-priori values, named like --fit
+    rec.known[name] = truth.number(fit_alias(name).key);
   for (const auto& p : requested_postures(truth))
   {
     log::info("recording: solving posture '{}' (truth mesh {} mm)", p.name, 1e3 * h);

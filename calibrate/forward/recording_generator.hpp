@@ -1,5 +1,5 @@
 #pragma once
-// Synthetic 3D surface recordings for proving the diagnosis (issue 7): the
+// Synthetic 3D surface recordings for proving the diagnosis: the
 // case's model with one hidden candidate physics switched on (or none), on
 // a finer mesh than the diagnosis uses, sampled at random points of the
 // deformed skin (uniform in area) with isotropic Gaussian noise, plus the

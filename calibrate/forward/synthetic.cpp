@@ -9,6 +9,22 @@
 
 namespace breastsim::calibration
 {
+Config measure_truth(Config c, const MeasureRequest& r)
+{
+  c.set("geometry.mesh_size", r.mesh_size > 0 ? r.mesh_size : 0.5 * c.number("geometry.mesh_size"));
+  c.validate();
+  return c;
+}
+
+SyntheticOptions synthetic_options(const MeasureRequest& r)
+{
+  SyntheticOptions so;
+  so.noise = r.noise;
+  so.sigma = r.sigma > 0 ? r.sigma : (r.noise > 0 ? r.noise : 5e-4);
+  so.seed = r.seed;
+  return so;
+}
+
 nlohmann::json synthetic_measurements(const Config& truth, const SyntheticOptions& o, MPI_Comm comm)
 {
   if (!(o.noise >= 0) || !(o.sigma > 0))

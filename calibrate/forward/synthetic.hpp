@@ -17,6 +17,18 @@ struct SyntheticOptions
   unsigned seed = 1;
 };
 
+/// What `breastsim measure` is asked (0: the default).
+struct MeasureRequest
+{
+  double mesh_size = 0; ///< mesh of the truth [m]; 0: half the case's geometry.mesh_size
+  double noise = 5e-4;  ///< standard deviation of the added noise [m]
+  double sigma = 0;     ///< sigma written into the file [m]; 0: the noise, or 0.5 mm without noise
+  unsigned seed = 1;
+};
+/// The case on the truth's mesh (validated; InputError).
+Config measure_truth(Config c, const MeasureRequest& r);
+SyntheticOptions synthetic_options(const MeasureRequest& r);
+
 /// A measurement document (measurements.hpp format) of `truth` in its
 /// requested postures. Solve on the case's own mesh: to avoid the inverse
 /// crime, give `truth` a finer geometry.mesh_size than the fit will use.

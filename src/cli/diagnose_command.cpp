@@ -1,17 +1,16 @@
 // `breastsim diagnose RECORDING.json --case CASE.toml`: locate where the
 // simulation and a 3D recording differ, name the physics that was left out,
-// model it, refit and show the fit improve (issue 7, docs/DIAGNOSE.md).
-#include "log.hpp"
-#include "output.hpp"
-#include "viewer.hpp"
+// model it, refit and show the fit improve (docs/DIAGNOSE.md).
+#include "candidates.hpp"
 #include "command.hpp"
-#include "diagnose.hpp"
 #include "diagnosis_output.hpp"
+#include "fit_parameters.hpp"
 #include "overrides.hpp"
 #include "recording.hpp"
+#include "strings.hpp"
+#include "viewer.hpp"
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 namespace breastsim::cli
 {
@@ -34,10 +33,11 @@ Command add_diagnose_command(CLI::App& root)
                                           "mesh (default: every default key)");
   app->add_option("--set", o->sets, "override a case key (repeatable)");
   add_output_option(app, o->out, "output folder (default results/diagnosis); replaced on success");
-  app->add_option("--fit", o->d.fit, "current-model parameters refitted (mu, lambda, mu_s, lambda_s, "
-                                     "c, rho)")->capture_default_str();
-  app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library "
-                                                 "(default: every candidate whose term is off)");
+  app->add_option("--fit", o->d.fit, "current-model parameters refitted (" + calibration::fit_alias_names()
+                                         + ")")->capture_default_str();
+  app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library ("
+                                                     + calibration::candidate_names()
+                                                     + "; default: every candidate whose term is off)");
   app->add_option("--alpha", o->d.alpha, "false-discovery level of a round")->capture_default_str();
   app->add_option("--max-rounds", o->d.max_rounds, "rounds of discovery")->capture_default_str();
   app->add_option("--refits", o->d.refits, "significant candidates refitted per round (the largest "
@@ -49,19 +49,10 @@ Command add_diagnose_command(CLI::App& root)
           {
             const Config c = load_case(o->case_file, o->sets);
             const auto rec = calibration::read_recording(o->recording);
-            std::stringstream ss(o->candidates);
-            for (std::string s; std::getline(ss, s, ',');)
-              if (!s.empty())
-                o->d.candidates.push_back(s);
+            o->d.candidates = split_list(o->candidates);
             check_picture_tools(MPI_COMM_WORLD); // fail before the solves, not after
             const auto out = claim_output(o->out, "results/diagnosis", {o->recording, o->case_file});
-            OutputDir dir(out, MPI_COMM_WORLD);
-            const auto d = calibration::diagnose(rec, c, o->d, MPI_COMM_WORLD);
-            calibration::write_diagnosis(dir.path(), d, rec, MPI_COMM_WORLD);
-            dir.commit();
-            if (log::is_root())
-              std::cout << calibration::report_text(d, rec) << "results written to " << out.path().string()
-                        << "/ (diagnosis.json, diagnosis.txt, residual maps, case.diagnosed.toml)\n";
+            std::cout << calibration::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);
             return 0;
           }};
 }

@@ -1,6 +1,6 @@
 // `breastsim record CASE.toml --out REC.json [--hidden NAME --value Q]`:
-// a synthetic 3D surface recording (issue 7) of the case with one hidden
-// candidate physics (or none), on a finer mesh, with noise.
+// a synthetic 3D surface recording of the case with one hidden candidate
+// physics (or none), on a finer mesh, with noise.
 #include "log.hpp"
 #include "output.hpp"
 #include "candidates.hpp"
@@ -21,19 +21,17 @@ Command add_record_command(CLI::App& root)
     calibration::RecordingOptions r;
   };
   auto o = std::make_shared<Options>();
-  std::string names;
-  for (const auto& c : calibration::candidate_library())
-    names += (names.empty() ? "" : ", ") + c.name;
   auto* app = root.add_subcommand("record", "synthetic 3D surface recording of a case with a hidden "
                                             "physics term (proof data for `diagnose`)");
   app->add_option("case", o->case_file, "case file (TOML): the current model and its parameters")->required();
   app->add_option("--out", o->out, "recording to write (JSON, breastsim-recording/1)")->required();
   app->add_option("--set", o->sets, "override a case key (repeatable)");
-  app->add_option("--hidden", o->r.hidden, "candidate physics switched on in the truth (" + names
+  app->add_option("--hidden", o->r.hidden, "candidate physics switched on in the truth ("
+                                               + calibration::candidate_names()
                                                + "); default none (a control)");
-  app->add_option("--value", o->r.value, "its parameter (base_springs: compliance 1/c [m/Pa]; skin: "
-                                         "mu_s [Pa]; suspensory_ligament: k_l [Pa/m]; gland_core: "
-                                         "m_g); default: the candidate's typical value");
+  app->add_option("--value", o->r.value, "its parameter ("
+                                             + calibration::candidate_parameters()
+                                             + "); default: the candidate's typical value");
   app->add_option("--points", o->r.points, "points per posture")->capture_default_str();
   app->add_option("--noise", o->r.noise, "noise sigma per coordinate [m]")->capture_default_str();
   app->add_option("--seed", o->r.seed, "random seed")->capture_default_str();

@@ -4,8 +4,9 @@
 # bad measurement files and unidentifiable requests exit with code 2 and
 # leave no output folder.
 set -u
-BIN="$1"
+BIN="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")" # absolute: the checks run in a scratch folder
 CHECK="/usr/bin/python3 $(cd "$(dirname "$0")/../viewer" && pwd)/png_check.py"
+FORMS="$(cd "$(dirname "$0")/../../forms" && pwd)"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 fails=0
@@ -51,5 +52,18 @@ expect_error algorithm "--algorithm 'newton' is unknown" "$ok" --algorithm newto
 expect_error resume "checkpoint" "$ok" --resume --checkpoint "$work/none.json"
 expect_error size "--size '12x7'" "$ok" --size 12x7
 expect_error correction "--correction-mesh-size = 0.02" "$ok" --correction-mesh-size 0.02
+
+# The --fit names and the diagnosis candidates the binary knows are those
+# the terms declare in forms/ (FIT, GEOMETRY_FIT, CANDIDATE).
+declared=$(cd "$FORMS" && PYTHONPATH="$FORMS" BREASTSIM_DEGREE=1 /usr/bin/python3 -c '
+import model
+print(", ".join(model.FIT_ALIASES))
+print("; ".join(n + ": " + c["parameter"] + " [" + c["unit"] + "]" for n, c in model.CANDIDATES.items()))
+') || fail "forms/model.py cannot be imported"
+fit_names=$(sed -n 1p <<<"$declared"); candidates=$(sed -n 2p <<<"$declared")
+"$BIN" calibrate --help | tr -s ' \n' ' ' | grep -qF -- "comma separated: $fit_names" \
+  && echo "ok   --fit names as declared: $fit_names" || fail "calibrate --help lacks the declared --fit names '$fit_names'"
+"$BIN" record --help | tr -s ' \n' ' ' | grep -qF -- "its parameter ($candidates)" \
+  && echo "ok   candidates as declared: $candidates" || fail "record --help lacks the declared candidates '$candidates'"
 
 [ "$fails" -eq 0 ] && echo "all calibrate CLI checks passed" || { echo "$fails failures"; exit 1; }

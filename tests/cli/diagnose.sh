@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Missing-physics diagnosis on concealed data (issue 7): a recording is made
+# Missing-physics diagnosis on concealed data: a recording is made
 # by the richer model (hidden candidate HIDDEN switched on, or none for the
 # control) on a finer mesh, with noise, at random skin points; `diagnose`
 # sees only the recording and the current model. Asserts: the right
@@ -83,7 +83,7 @@ expect_fail() {
   [ ! -e "$work/bad" ] || { echo "FAIL: partial output for $what"; exit 1; }
 }
 if [ "$hidden" = control ]; then
-  # The recording as calibration data (issue 4: 3D surface points): mu and c
+  # The recording as calibration data (3D surface points): mu and c
   # with intervals that hold the truth, and a calibrated case.
   "$bin" -q calibrate "$work/recording.json" --case "$case_file" --fit mu,c --out "$work/cal" > /dev/null
   /usr/bin/python3 - "$work" <<'PY'

@@ -1,0 +1,108 @@
+#pragma once
+// The data of a missing-physics diagnosis (diagnose.hpp): its options, the
+// fits, regions, candidate scores and rounds, and the result.
+#include "config.hpp"
+#include "least_squares.hpp"
+#include "recording.hpp"
+#include "uncertainty.hpp"
+#include <array>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace breastsim::calibration
+{
+struct DiagnoseOptions
+{
+  std::string fit = "mu";              ///< current-model parameters refitted (--fit names)
+  std::vector<std::string> candidates; ///< library subset to test ("": every applicable one)
+  double alpha = 1e-3;                 ///< false-discovery level of one round (all candidates)
+  int max_rounds = 2;
+  bool discover = true;                ///< false: only fit the current model (calibration)
+  int refits = 2;                      ///< significant candidates refitted per round (best LR wins)
+  int neighbours = 12;                 ///< k of the neighbourhood means (localisation)
+  double region_z = 4.0;               ///< |neighbourhood z| that marks a point as systematic
+  /// Numerical noise floor: the fitted current model is also solved on a
+  /// mesh `mesh_ratio` times finer; the mean square change of the distances
+  /// (per posture) and of the landmarks, e_h^2, is added to the noise,
+  ///   sigma_eff^2 = sigma^2 + e_h^2,
+  /// so that the discretisation error of the diagnosis mesh is not mistaken
+  /// for missing physics. mesh_ratio <= 1: off (sigma_eff = sigma).
+  double mesh_ratio = 1.5;
+  LsqOptions lsq;
+};
+
+/// A region of systematic residual on one posture's surface.
+struct Region
+{
+  std::string posture;
+  std::string where;                   ///< plain-words location
+  int points = 0;
+  Point centroid{};                    ///< [m]
+  double mean_residual = 0;            ///< mean normal distance [m] (+: recording outside the model)
+  double max_residual = 0;             ///< largest |distance| [m]
+  double z = 0;                        ///< sum of whitened residuals / sqrt(points)
+};
+
+/// One fitted model: parameters, residuals, goodness of fit.
+struct FitState
+{
+  std::vector<std::string> names, units;
+  std::vector<double> values;                      ///< fitted parameters [unit]
+  Uncertainty uncertainty;
+  std::vector<std::vector<double>> distances;      ///< per posture, per point [m]
+  std::vector<std::array<double, 3>> nipple_error; ///< per posture, model - landmark [m] (NaN: none)
+  std::vector<double> r;                           ///< whitened residuals (points, then landmarks)
+  Matrix J;                                        ///< dr/d ln p
+  double chi2 = 0;
+  int dof = 0;
+  double gof_z = 0;                                ///< (chi2 - dof) / sqrt(2 dof)
+  double gof_p = 1;                                ///< P(chi2 >= observed | noise only), normal approx.
+  std::vector<double> rms, max_abs;                ///< per posture [m]
+  int evaluations = 0;
+  Config config;                                   ///< the fitted case
+};
+
+struct CandidateScore
+{
+  std::string name;
+  double score = 0;     ///< S (0 when the data pull q below 0)
+  double p_value = 1;   ///< one-sided, P(N(0,1) > U / sqrt(I))
+  double estimate = 0;  ///< linearised q* = U / I [candidate unit]
+  /// LR the diagnosis mesh's own discretisation error could give this
+  /// candidate: kappa^2 max(0, -j^T P e)^2 / I, e = r_h - r_{h/r}, kappa = 1/(1 - 1/r);
+  /// added to the critical value.
+  double mesh_allowance = 0;
+};
+
+struct Round
+{
+  FitState before;
+  std::vector<Region> regions;
+  std::vector<CandidateScore> scores; ///< sorted, best first
+  std::vector<std::pair<std::string, double>> refits; ///< candidates refitted, their LR
+  std::string tested;                 ///< best refitted candidate ("" = none significant)
+  FitState after;                     ///< valid if !tested.empty()
+  double lr = 0, critical = 0;        ///< LR of `tested`; critical value of the level
+  double critical_used = 0;           ///< critical + the tested candidate's mesh allowance
+  bool accepted = false;
+};
+
+struct Diagnosis
+{
+  std::vector<Round> rounds;
+  FitState final_fit;                 ///< after a discovery: refitted on the finer mesh
+  std::vector<double> se_numerical;   ///< numerical part of the SE of ln p (final_fit)
+  /// Skin surface documents (surface_export.hpp) of the final model per
+  /// posture, on the diagnosis mesh (rank 0).
+  std::vector<nlohmann::json> surfaces;
+  std::vector<std::string> discovered;
+  std::string verdict;                ///< plain words
+  bool fit_only = false;              ///< no candidate was tested (DiagnoseOptions::discover)
+  double noise_sigma = 0;
+  std::vector<double> mesh_error;     ///< e_h per posture (distances) [m]
+  std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
+  int posture_solves = 0;
+  double seconds = 0;
+};
+} // namespace breastsim::calibration

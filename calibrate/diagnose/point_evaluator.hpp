@@ -1,0 +1,47 @@
+#pragma once
+// The forward map of a diagnosis: a case -> the normal distances of the
+// recorded points to the simulated deformed skin (surface_distance.hpp) and
+// the nipple landmark errors, in every recorded posture, whitened by the
+// noise (or by sigma_eff once the numerical noise floor is known). Keeps one
+// warm-started ForwardModel.
+#include "config.hpp"
+#include "forward_model.hpp"
+#include "recording.hpp"
+#include <array>
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace breastsim::calibration
+{
+/// One forward evaluation: distances of the recorded points, landmark errors.
+struct PointEvaluation
+{
+  std::vector<std::vector<double>> distances;      ///< per posture, per point [m]
+  std::vector<std::array<double, 3>> nipple_error; ///< per posture, model - landmark [m] (NaN: none)
+  std::vector<double> raw; ///< recording - model [m] (distances, then landmarks)
+  std::vector<double> r;   ///< raw / sigma
+};
+
+class PointEvaluator
+{
+public:
+  PointEvaluator(const Recording& rec, MPI_Comm comm);
+  /// Collective. The evaluation of case `c`; throws SolveError.
+  PointEvaluation operator()(const Config& c);
+
+  int posture_solves() const { return _forward.posture_solves(); }
+  /// Skin surface documents of case `c` per posture (collective; rank 0).
+  std::vector<nlohmann::json> surfaces(const Config& c) { return _forward.surfaces(c); }
+  /// Standard deviation of each raw residual from now on [m] (default: the noise sigma).
+  void set_sigma(std::vector<double> s) { _sigma = std::move(s); }
+
+private:
+  std::vector<double> distances(std::size_t posture, const Model& model) const;
+
+  const Recording& _rec;
+  MPI_Comm _comm;
+  ForwardModel _forward;
+  std::vector<double> _sigma;
+};
+} // namespace breastsim::calibration

@@ -1,0 +1,15 @@
+#pragma once
+// The WHERE step of a diagnosis: regions of systematic residual on each
+// posture's recorded points.
+#include "diagnosis.hpp"
+#include <vector>
+
+namespace breastsim::calibration
+{
+/// Regions of systematic residual of one fit (neighbourhood means of the
+/// residuals whitened by sigma[posture]; clusters of same-sign points
+/// beyond region_z), largest |z| first.
+std::vector<Region> locate_regions(const Recording& rec, const FitState& f,
+                                   const std::vector<double>& sigma,
+                                   int neighbours, double region_z);
+} // namespace breastsim::calibration

@@ -1,0 +1,71 @@
+#include "calibrate_job.hpp"
+#include "calibration_output.hpp"
+#include "diagnose.hpp"
+#include "diagnosis_output.hpp"
+#include "log.hpp"
+#include "optimizer.hpp"
+#include "output.hpp"
+
+namespace breastsim::calibration
+{
+namespace
+{
+/// 3D surface points: the point-to-skin fit of `diagnose`, without discovery.
+std::string fit_recording(const CalibrateJob& job, const OutputTarget& out, MPI_Comm comm)
+{
+  const Recording& rec = *job.data.recording;
+  DiagnoseOptions d;
+  d.fit = job.request.fit;
+  d.discover = false;
+  OutputDir dir(out, comm);
+  const auto res = diagnose(rec, job.start, d, comm);
+  write_diagnosis(dir.path(), res, rec, comm);
+  write_text(dir.path() / "calibrated.toml", res.final_fit.config.to_toml(), comm);
+  dir.commit();
+  if (!log::is_root())
+    return "";
+  return report_text(res, rec) + "results written to " + out.path().string()
+         + "/ (calibrated.toml, diagnosis.json, residual maps)\n";
+}
+
+std::string fit_measurements(const CalibrateJob& job, const OutputTarget& out,
+                             const std::filesystem::path& checkpoint, MPI_Comm comm)
+{
+  const CalibrateRequest& r = job.request;
+  CalibrateOptions co;
+  co.optimizer.algorithm = r.algorithm;
+  co.optimizer.max_evals = r.max_evals;
+  co.checkpoint = checkpoint;
+  co.resume = r.resume;
+  co.measurements_source = r.data_file;
+  co.morph = !r.remesh;
+  co.correction_mesh_size = r.correction_mesh_size;
+  log::info("calibrating [{}] with {} against {} measurements in {} postures", r.fit, r.algorithm,
+            job.data.measurements.items.size(), job.data.measurements.postures.size());
+  const auto res = calibrate(job.start, job.data.measurements, job.fit, co, comm);
+  write_calibration(res, out, comm, {true, r.picture_size});
+  if (!log::is_root())
+    return "";
+  return calibration_table(res.report) + "results written to " + out.path().string()
+         + "/ (calibrated.toml for `breastsim simulate`, report.json, "
+           "misfit_history.png, measurements.png, view_<posture>.png)\n";
+}
+} // namespace
+
+CalibrateJob prepare_calibration(const Config& start, const CalibrateRequest& r)
+{
+  CalibrateJob job{start, r, read_calibration_data(r.data_file), {}};
+  if (job.data.recording)
+    return job; // the diagnosis parses --fit
+  job.fit = parse_fit(r.fit, start);
+  check_algorithm(r.algorithm);
+  return job;
+}
+
+std::string run_calibration(const CalibrateJob& job, const OutputTarget& out,
+                            const std::filesystem::path& checkpoint, MPI_Comm comm)
+{
+  return job.data.recording ? fit_recording(job, out, comm)
+                            : fit_measurements(job, out, checkpoint, comm);
+}
+} // namespace breastsim::calibration

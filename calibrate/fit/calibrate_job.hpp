@@ -1,0 +1,37 @@
+#pragma once
+// `breastsim calibrate` as a job: the request with its data, read and checked
+// before any output is claimed; the fit (calibrate.hpp for point
+// measurements; for a 3D surface recording the point-to-skin fit of the
+// diagnosis without discovery, diagnose.hpp) and the files it writes. The
+// CLI parses, claims the outputs and prints the summary.
+#include "calibrate_request.hpp"
+#include "fit_parameters.hpp"
+#include "output_target.hpp"
+#include <filesystem>
+#include <mpi.h>
+#include <string>
+#include <vector>
+
+namespace breastsim::calibration
+{
+struct CalibrateJob
+{
+  Config start;
+  CalibrateRequest request;
+  CalibrationData data;
+  std::vector<FitParameter> fit; ///< point measurements: the parsed --fit
+
+  /// Point measurements keep a checkpoint (--checkpoint, --resume); a recording's fit does not.
+  bool keeps_checkpoint() const { return !data.recording.has_value(); }
+};
+
+/// Read the data file; for point measurements also the --fit list and the
+/// algorithm. Throws InputError.
+CalibrateJob prepare_calibration(const Config& start, const CalibrateRequest& r);
+
+/// Collective. Fit and write every result file into `out` (staged, replaced
+/// only when complete); the printable summary on rank 0, ending in
+/// "results written to ..." ("" on the other ranks).
+std::string run_calibration(const CalibrateJob& job, const OutputTarget& out,
+                            const std::filesystem::path& checkpoint, MPI_Comm comm);
+} // namespace breastsim::calibration
