@@ -1,7 +1,9 @@
 """The energy terms composed into the total energy, in order.
 
 To add a physics term: write forms/<name>.py (NAME, PARAMETERS, ENERGY and
-its Constants at module level) and add one line here.
+its Constants at module level; optionally FIT names for `--fit` and a
+CANDIDATE for the missing-physics diagnosis, see forms/common.py) and add
+one line here.
 """
 TERMS = [
     "tissue",
