@@ -1,0 +1,83 @@
+"""The composition of the independent-truth benchmark (issue 17).
+
+Every recording is a dict:
+    name, strength_class (control | weak | strong | pair),
+    effects: list of (effect NAME, pattern) - the hidden truth effects,
+    target_peak_mm: the intended peak shape change of each effect alone,
+    material: mu, lambda [Pa] (lambda/mu between 2 and 10), rho,
+    postures: 4 postures {name, theta_deg}, seed.
+
+Shapes (patterns) are drawn from each effect's documented ranges with a
+seeded generator: the weak and strong recordings of one shape share it.
+"""
+import numpy as np
+
+from forms_truth import EFFECTS
+
+RHO = 970.0
+MU = [400.0, 450.0, 500.0, 550.0, 600.0]
+LAMBDA_OVER_MU = [2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0]
+# Four postures each. Soft, compressible truths (lambda/mu < 4, or mu below
+# 400 Pa) crease at the inframammary fold when reclined (neither model has
+# contact with the chest) and the P2 Newton solve does not converge there:
+# they get the set without a reclined posture.
+RECLINED_SETS = [
+    [("standing", 0.0), ("supine", 90.0), ("all_fours", -90.0), ("reclined_40", 40.0)],
+    [("standing", 0.0), ("supine", 90.0), ("all_fours", -90.0), ("reclined_45", 45.0)],
+    [("standing", 0.0), ("supine", 90.0), ("reclined_40", 40.0), ("leaning_-45", -45.0)],
+]
+UPRIGHT_SET = [("standing", 0.0), ("supine", 90.0), ("all_fours", -90.0), ("leaning_-45", -45.0)]
+MIN_RATIO_RECLINED = 4.0
+TARGET_MM = {"weak": 1.0, "strong": 3.0, "pair": 2.0}
+
+N_CONTROLS = 14
+SHAPES_PER_EFFECT = 3
+# candidate -> truth effect; tether shapes 1, 2 are springs, shape 3 cables
+BY_CANDIDATE = {EFFECTS[n].CANDIDATE: n for n in EFFECTS}
+PAIRS = [("base_springs", "gland_core"), ("skin", "suspensory_ligament"),
+         ("base_springs", "suspensory_ligament"), ("skin", "gland_core")]
+
+
+def _pattern(effect, shape_seed, shape_index):
+    rng = np.random.default_rng(shape_seed)
+    if effect == "smooth_tethers":
+        return EFFECTS[effect].draw_pattern(rng, "cables" if shape_index == 3 else "springs")
+    return EFFECTS[effect].draw_pattern(rng)
+
+
+def _common(index):
+    """Material and postures cycled over the set (every lambda/mu occurs)."""
+    ratio = LAMBDA_OVER_MU[index % len(LAMBDA_OVER_MU)]
+    mu = MU[(3 * index + 2) % len(MU)]
+    if ratio >= MIN_RATIO_RECLINED:
+        postures = RECLINED_SETS[index % len(RECLINED_SETS)]
+    else:
+        postures = UPRIGHT_SET
+    return {"material": {"mu": mu, "lambda": ratio * mu, "rho": RHO},
+            "postures": [{"name": n, "theta_deg": t} for n, t in postures],
+            "seed": 1700 + index}
+
+
+def recordings():
+    out = []
+
+    def add(name, cls, effects):
+        rec = {"name": name, "strength_class": cls, "effects": effects,
+               "target_peak_mm": TARGET_MM.get(cls)}
+        rec.update(_common(len(out)))
+        out.append(rec)
+
+    for i in range(1, N_CONTROLS + 1):
+        add(f"control_{i:02d}", "control", [])
+    for cand, effect in sorted(BY_CANDIDATE.items()):
+        for k in range(1, SHAPES_PER_EFFECT + 1):
+            pattern = _pattern(effect, [17, len(cand), k, ord(cand[0])], k)
+            for cls in ("weak", "strong"):
+                add(f"{cand}_{cls}_{k}", cls, [(effect, pattern)])
+    for k, (a, b) in enumerate(PAIRS, start=1):
+        effects = [(BY_CANDIDATE[c], _pattern(BY_CANDIDATE[c], [23, k, j], 1 + (k % 2)))
+                   for j, c in enumerate((a, b))]
+        add(f"pair_{a}__{b}", "pair", effects)
+    names = [r["name"] for r in out]
+    assert len(names) == len(set(names)), "duplicate recording names"
+    return out

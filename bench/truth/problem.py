@@ -1,0 +1,73 @@
+"""A truth problem: the baseline physics plus a set of hidden effects on one
+element degree, sharing the mesh and the unknown of that degree.
+
+The UFL forms depend only on (degree, effect names, structural choices such
+as the tether law); shapes and strengths are Constants, so one compiled
+problem serves every recording with the same effects.
+"""
+from dolfinx import fem
+
+from forms_truth import EFFECTS, gravity, tissue
+from forms_truth.context import Context
+from geometry import TAGS
+from solver import TruthModel
+
+
+class Problem:
+    def __init__(self, ctx, effects):
+        """effects: list of (effect NAME, pattern)."""
+        self.ctx = ctx
+        self.tissue = tissue.Term(ctx)
+        self.gravity = gravity.Term(ctx)
+        self.effects = {}
+        for name, pattern in effects:
+            self.effects[name] = EFFECTS[name].Term(ctx, pattern, self.tissue)
+        fixed_base = not any(EFFECTS[n].REPLACES_FIXED_BASE for n in self.effects)
+        self.model = TruthModel(ctx, self.tissue, self.gravity, list(self.effects.values()),
+                                fixed_base)
+
+    def configure(self, material, effects, strengths):
+        """material: dict mu, lambda [Pa]; effects: list of (name, pattern);
+        strengths: dict name -> strength."""
+        self.tissue.set(material["mu"], material["lambda"])
+        for name, pattern in effects:
+            self.effects[name].set_pattern(pattern)
+            self.effects[name].set_strength(strengths[name])
+
+    def solve_postures(self, postures, rho, starts=None):
+        """Displacement arrays, one per posture {name, theta_deg}."""
+        out = []
+        for i, p in enumerate(postures):
+            start = None if starts is None else starts[i]
+            out.append(self.model.solve_posture(p["theta_deg"], rho, start))
+        return out
+
+
+def problem_key(degree, effects):
+    return (degree,) + tuple(sorted((n, EFFECTS[n].structure(p)) for n, p in effects))
+
+
+class Problems:
+    """One Context per degree on the shared mesh; problems built on demand and
+    kept for the recordings that follow."""
+
+    def __init__(self, mesh, facet_tags, R, H):
+        self.ctx = {d: Context(mesh, facet_tags, TAGS, R, H, degree=d) for d in (1, 2)}
+        self._cache = {}
+        self._p2 = fem.Function(self.ctx[2].V)
+
+    def get(self, degree, effects):
+        key = problem_key(degree, effects)
+        if key not in self._cache:
+            self._cache[key] = Problem(self.ctx[degree], effects)
+        return self._cache[key]
+
+    def all(self):
+        """Every problem built so far."""
+        return list(self._cache.values())
+
+    def p1_to_p2(self, u1):
+        """Interpolate a P1 displacement array into the P2 space."""
+        self.ctx[1].u.x.array[:] = u1
+        self._p2.interpolate(self.ctx[1].u)
+        return self._p2.x.array.copy()

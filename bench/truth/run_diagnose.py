@@ -1,0 +1,349 @@
+#!/usr/bin/env python3
+"""Run `breastsim diagnose` on the independent-truth recordings and score it.
+
+    python3 bench/truth/run_diagnose.py BUILD_DIR [--only NAME,...] [--classes control,weak,...]
+                                        [--limit N] [--out DIR] [--rerun] [--summarize-only]
+    python3 bench/truth/run_diagnose.py --selftest
+
+Every recording of bench/truth/manifest.json (or the selected subset) is
+diagnosed with the baseline of issue 17: tissue eq. (5), fixed base, no skin,
+R, H and rho known (from the recording), `--fit mu,lambda`:
+
+    nice -n 19 BUILD/breastsim -q diagnose REC --case cases/default.toml \
+        --set base.fixed=true --set terms.base_springs=false --set terms.skin=false \
+        --fit mu,lambda --out OUT/NAME/diagnosis [EXTRA]
+
+Resumable: a recording whose OUT/NAME/diagnosis/diagnosis.json exists is not
+run again (unless --rerun). Writes OUT/summary.json and OUT/summary.md:
+confusion matrix (hidden -> named), exact verdicts on single-effect
+recordings, false discoveries on the controls, false-discovery rate,
+coverage of the hidden value q by the reported 95 % interval, time per
+diagnosis. Only the standard library is needed.
+"""
+import argparse
+import json
+import shlex
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parent.parent
+CANDIDATES = ["base_springs", "skin", "suspensory_ligament", "gland_core"]
+BASELINE_SETS = ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"]
+FIT = "mu,lambda"
+# the issue's targets ("Done when")
+TARGET_EXACT, TARGET_COVERAGE, TARGET_MEDIAN_S, MIN_CONTROLS = 0.95, 0.90, 120.0, 12
+
+
+# -- running ---------------------------------------------------------------------
+def diagnose_command(binary, recording, out_dir, case, extra, nice):
+    cmd = ["nice", "-n", str(nice)] if nice is not None else []
+    cmd += [str(binary), "-q", "diagnose", str(recording), "--case", str(case)]
+    for s in BASELINE_SETS:
+        cmd += ["--set", s]
+    cmd += ["--fit", FIT, "--out", str(out_dir)] + list(extra)
+    return cmd
+
+
+def run_one(binary, manifest_dir, entry, out, case, extra, nice, rerun):
+    """Diagnose one recording into OUT/NAME/; returns 'ran', 'skipped' or 'failed'."""
+    d = out / entry["name"]
+    if (d / "diagnosis" / "diagnosis.json").exists() and not rerun:
+        return "skipped"
+    d.mkdir(parents=True, exist_ok=True)
+    rec = manifest_dir / entry["file"]
+    cmd = diagnose_command(binary, rec, d / "diagnosis", case, extra, nice)
+    (d / "command.txt").write_text(shlex.join(cmd) + "\n")
+    t0 = time.monotonic()
+    with open(d / "diagnose.log", "w") as log:
+        rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT)
+    seconds = time.monotonic() - t0
+    (d / "run.json").write_text(json.dumps({"exit_code": rc, "seconds": seconds,
+                                            "command": cmd}, indent=1) + "\n")
+    return "ran" if rc == 0 else "failed"
+
+
+# -- scoring ---------------------------------------------------------------------
+def read_result(out, entry):
+    """One row: hidden, named, intervals, time; None when not run yet."""
+    d = out / entry["name"]
+    run = d / "run.json"
+    if not run.exists():
+        return None
+    info = json.loads(run.read_text())
+    row = {"name": entry["name"], "hidden": sorted(entry["hidden"]),
+           "hidden_label": entry["hidden_label"], "class": entry["strength_class"],
+           "peak_change_mm": entry.get("peak_change_mm"), "seconds": info["seconds"],
+           "exit_code": info["exit_code"], "named": None, "coverage": []}
+    dj = d / "diagnosis" / "diagnosis.json"
+    if info["exit_code"] != 0 or not dj.exists():
+        return row
+    dia = json.loads(dj.read_text())
+    row["named"] = sorted(dia.get("discovered", []))
+    row["verdict"] = dia.get("verdict")
+    params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
+    row["fitted"] = {k: p.get("value") for k, p in params.items()}
+    for eff in entry.get("effects", []):
+        q = eff.get("q_equivalent")
+        if not q or eff["candidate"] not in row["named"]:
+            continue
+        p = params.get(q["parameter"])
+        lo, hi = (p or {}).get("interval95", [None, None])
+        inside = None if lo is None or hi is None else bool(lo <= q["value"] <= hi)
+        row["coverage"].append({"candidate": eff["candidate"], "parameter": q["parameter"],
+                                "truth": q["value"], "approximate": bool(q.get("approximate")),
+                                "fitted": (p or {}).get("value"), "interval95": [lo, hi],
+                                "inside": inside})
+    return row
+
+
+def ratio(a, b):
+    return None if b == 0 else a / b
+
+
+def summarize(rows):
+    done = [r for r in rows if r["named"] is not None]
+    failed = [r["name"] for r in rows if r["named"] is None]
+    labels = sorted({r["hidden_label"] for r in done}, key=lambda s: (s != "none", "+" in s, s))
+    columns = CANDIDATES + ["none"]
+    matrix = {lab: {c: 0 for c in columns} for lab in labels}
+    for r in done:
+        for c in (r["named"] or ["none"]):
+            matrix[r["hidden_label"]].setdefault(c, 0)
+            matrix[r["hidden_label"]][c] += 1
+    exact = lambda r: r["named"] == r["hidden"]
+    singles = [r for r in done if len(r["hidden"]) == 1]
+    pairs = [r for r in done if len(r["hidden"]) == 2]
+    controls = [r for r in done if not r["hidden"]]
+    named_terms = sum(len(r["named"]) for r in done)
+    false_terms = sum(len(set(r["named"]) - set(r["hidden"])) for r in done)
+    cov = [c for r in done for c in r["coverage"] if c["inside"] is not None]
+    cov_exact = [c for c in cov if not c["approximate"]]
+    times = [r["seconds"] for r in done]
+    by_class = {}
+    for cls in sorted({r["class"] for r in singles}):
+        sub = [r for r in singles if r["class"] == cls]
+        by_class[cls] = {"exact": sum(map(exact, sub)), "of": len(sub)}
+    s = {
+        "recordings_scored": len(done), "failed_or_missing": failed,
+        "confusion": matrix,
+        "single_effect": {"exact": sum(map(exact, singles)), "of": len(singles),
+                          "rate": ratio(sum(map(exact, singles)), len(singles)),
+                          "named_hidden_with_extra": sum(1 for r in singles if set(r["hidden"]) < set(r["named"])),
+                          "missed": sum(1 for r in singles if not set(r["hidden"]) & set(r["named"])),
+                          "by_class": by_class},
+        "pairs": {"exact": sum(map(exact, pairs)), "of": len(pairs)},
+        "controls": {"false_discoveries": sum(1 for r in controls if r["named"]), "of": len(controls),
+                     "names": [r["name"] for r in controls if r["named"]]},
+        "false_discovery_rate": {"false_terms": false_terms, "named_terms": named_terms,
+                                 "rate": ratio(false_terms, named_terms)},
+        "coverage": {"inside": sum(c["inside"] for c in cov), "of": len(cov),
+                     "rate": ratio(sum(c["inside"] for c in cov), len(cov)),
+                     "exact_equivalents_inside": sum(c["inside"] for c in cov_exact),
+                     "exact_equivalents_of": len(cov_exact)},
+        "seconds": {"median": statistics.median(times) if times else None,
+                    "min": min(times) if times else None, "max": max(times) if times else None},
+    }
+    s["targets"] = {
+        "single_exact>=0.95": s["single_effect"]["rate"] is not None and s["single_effect"]["rate"] >= TARGET_EXACT,
+        "controls>=12_and_no_false_discovery": len(controls) >= MIN_CONTROLS and s["controls"]["false_discoveries"] == 0,
+        "coverage>=0.90": s["coverage"]["rate"] is not None and s["coverage"]["rate"] >= TARGET_COVERAGE,
+        "median<=120s": s["seconds"]["median"] is not None and s["seconds"]["median"] <= TARGET_MEDIAN_S,
+    }
+    return s
+
+
+def fmt(x, spec=".3g"):
+    return "-" if x is None else format(x, spec)
+
+
+def markdown(s, rows, command):
+    out = [f"Command: `{command}`", ""]
+    cols = CANDIDATES + ["none"]
+    out += ["| hidden \\ named | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
+    for lab, counts in s["confusion"].items():
+        out.append(f"| {lab} | " + " | ".join(str(counts.get(c, 0)) for c in cols) + " |")
+    se, c, f, cv, t = s["single_effect"], s["controls"], s["false_discovery_rate"], s["coverage"], s["seconds"]
+    out += ["",
+            f"- single-effect recordings named exactly: {se['exact']} of {se['of']} "
+            f"({fmt(se['rate'], '.0%')}); by class: "
+            + ", ".join(f"{k} {v['exact']}/{v['of']}" for k, v in se["by_class"].items())
+            + f"; hidden named plus extra terms: {se['named_hidden_with_extra']}; hidden missed: {se['missed']}",
+            f"- two-effect recordings named exactly: {s['pairs']['exact']} of {s['pairs']['of']}",
+            f"- controls with a false discovery: {c['false_discoveries']} of {c['of']}"
+            + (f" ({', '.join(c['names'])})" if c["names"] else ""),
+            f"- false-discovery rate (named terms not hidden / named terms): {f['false_terms']} / "
+            f"{f['named_terms']} = {fmt(f['rate'], '.2f')}",
+            f"- hidden q inside the reported 95 % interval: {cv['inside']} of {cv['of']} correct discoveries "
+            f"({fmt(cv['rate'], '.0%')}; with an exact equivalent: {cv['exact_equivalents_inside']} of "
+            f"{cv['exact_equivalents_of']})",
+            f"- time per diagnosis: median {fmt(t['median'], '.1f')} s (min {fmt(t['min'], '.1f')}, "
+            f"max {fmt(t['max'], '.1f')})",
+            f"- not scored (failed or not run): {', '.join(s['failed_or_missing']) or 'none'}",
+            "", "| recording | class | hidden | peak [mm] | named | q truth | fitted [95 % interval] | s |",
+            "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if r is None:
+            continue
+        cov = "; ".join(f"{x['truth']:.3g}" for x in r["coverage"]) or "-"
+        fit = "; ".join(f"{fmt(x['fitted'])} [{fmt(x['interval95'][0])}, {fmt(x['interval95'][1])}]"
+                        for x in r["coverage"]) or "-"
+        named = "failed" if r["named"] is None else ("+".join(r["named"]) or "none")
+        out.append(f"| {r['name']} | {r['class']} | {r['hidden_label']} | {fmt(r['peak_change_mm'])} | "
+                   f"{named} | {cov} | {fit} | {r['seconds']:.1f} |")
+    return "\n".join(out) + "\n"
+
+
+# -- command line ------------------------------------------------------------------
+def select(manifest, only, classes, limit):
+    entries = list(manifest["recordings"].values())
+    if only:
+        unknown = set(only) - {e["name"] for e in entries}
+        if unknown:
+            sys.exit(f"run_diagnose.py: unknown recording(s) {sorted(unknown)}")
+        entries = [e for e in entries if e["name"] in only]
+    if classes:
+        bad = set(classes) - {"control", "weak", "strong", "pair"}
+        if bad:
+            sys.exit(f"run_diagnose.py: unknown class(es) {sorted(bad)} (control, weak, strong, pair)")
+        entries = [e for e in entries if e["strength_class"] in classes]
+    return entries[:limit] if limit else entries
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(description="diagnose the independent-truth recordings (issue 17)")
+    ap.add_argument("build", nargs="?", help="build folder holding breastsim")
+    ap.add_argument("--manifest", default=str(HERE / "manifest.json"))
+    ap.add_argument("--out", default=str(HERE / "results"))
+    ap.add_argument("--case", default=str(REPO / "cases" / "default.toml"))
+    ap.add_argument("--only", action="append", default=[], help="recording names (comma-separated)")
+    ap.add_argument("--classes", default="", help="subset of control,weak,strong,pair")
+    ap.add_argument("--limit", type=int, default=0, help="at most N recordings")
+    ap.add_argument("--extra", default="", help="further diagnose arguments (quoted)")
+    ap.add_argument("--nice", type=int, default=19, help="niceness of the diagnoses (-1: none)")
+    ap.add_argument("--rerun", action="store_true", help="diagnose again where a result exists")
+    ap.add_argument("--summarize-only", action="store_true", help="only score existing results")
+    ap.add_argument("--selftest", action="store_true", help="check runner and scoring with a fake binary")
+    a = ap.parse_args(argv)
+    a.only = [n for item in a.only for n in item.split(",") if n]
+    a.classes = [c for c in a.classes.split(",") if c]
+    if a.limit < 0:
+        ap.error("--limit must be >= 0")
+    if not a.selftest and not a.summarize_only and not a.build:
+        ap.error("BUILD_DIR is required (or --summarize-only / --selftest)")
+    return a
+
+
+def main(argv=None):
+    a = parse_args(sys.argv[1:] if argv is None else argv)
+    if a.selftest:
+        return selftest()
+    manifest_path = Path(a.manifest)
+    if not manifest_path.exists():
+        sys.exit(f"run_diagnose.py: no manifest {manifest_path} (generate.py writes it)")
+    manifest = json.loads(manifest_path.read_text())
+    entries = select(manifest, a.only, a.classes, a.limit)
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    if not a.summarize_only:
+        binary = Path(a.build) / "breastsim"
+        if not binary.exists():
+            sys.exit(f"run_diagnose.py: {binary} does not exist (build breastsim first)")
+        nice = None if a.nice < 0 else a.nice
+        for e in entries:
+            state = run_one(binary, manifest_path.parent, e, out, a.case, shlex.split(a.extra), nice, a.rerun)
+            row = read_result(out, e)
+            named = "-" if row is None or row["named"] is None else ("+".join(row["named"]) or "none")
+            print(f"{e['name']:<40} {state:<8} hidden {e['hidden_label']:<35} named {named:<30} "
+                  f"{'' if row is None else format(row['seconds'], '.1f') + ' s'}", flush=True)
+    rows = [read_result(out, e) for e in entries]
+    scored = [r for r in rows if r is not None]
+    summary = summarize(scored)
+    command = "python3 bench/truth/run_diagnose.py " + " ".join(shlex.quote(x) for x in (argv or sys.argv[1:]))
+    summary["command"] = command
+    summary["rows"] = scored
+    (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    text = markdown(summary, scored, command)
+    (out / "summary.md").write_text(text)
+    print(text)
+    return 0
+
+
+# -- self-test: a fake breastsim with hand-made diagnosis outputs ------------------------
+FAKE_BINARY = r'''#!/usr/bin/env python3
+import json, sys, pathlib
+args = sys.argv[1:]
+assert args[:2] == ["-q", "diagnose"], args
+rec = json.loads(pathlib.Path(args[2]).read_text())
+sets = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
+assert sets == ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"], sets
+assert args[args.index("--fit") + 1] == "mu,lambda"
+out = pathlib.Path(args[args.index("--out") + 1]); out.mkdir(parents=True)
+answers = json.loads(pathlib.Path(__file__).with_name("answers.json").read_text())
+discovered, params = answers[rec["truth"]["name"]]
+final = {"parameters": [{"name": "tissue.mu", "unit": "Pa", "value": 410.0, "interval95": [380.0, 440.0]}]
+         + [{"name": n, "unit": "", "value": v, "interval95": iv} for n, v, iv in params],
+         "chi2": 1.0, "dof": 1, "reduced_chi2": 1.0, "postures": []}
+(out / "diagnosis.json").write_text(json.dumps({"format": "breastsim-diagnosis/1", "verdict": "fake",
+    "discovered": discovered, "rounds": [], "final": final, "wall_time_s": 0.1}))
+'''
+
+
+def selftest():
+    """Hand-made diagnoses of five recordings: a clean control, a control with
+    a false base_springs, a weak skin named with q inside its interval, a
+    gland named with an extra term and q outside, a pair named in full."""
+    entries = {
+        "c1": ([], []), "c2": ([], []),
+        "s1": (["skin"], [("skin", "skin.mu", 2500.0)]),
+        "g1": (["gland_core"], [("gland_core", "gland.excess", 1.5)]),
+        "p1": (["base_springs", "gland_core"], [("base_springs", "base.compliance", 2e-7),
+                                                ("gland_core", "gland.excess", 1.0)]),
+    }
+    answers = {"c1": [[], []], "c2": [["base_springs"], [["base.compliance", 1e-7, [1e-8, 1e-6]]]],
+               "s1": [["skin"], [["skin.mu", 2600.0, [2000.0, 3000.0]]]],
+               "g1": [["gland_core", "base_springs"], [["gland.excess", 3.0, [2.0, 4.0]],
+                                                       ["base.compliance", 1e-7, [1e-8, 1e-6]]]],
+               "p1": [["gland_core", "base_springs"], [["base.compliance", 2.1e-7, [1e-7, 4e-7]],
+                                                       ["gland.excess", 1.1, [0.5, 2.0]]]]}
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "recordings").mkdir()
+        manifest = {"recordings": {}}
+        for name, (hidden, qs) in entries.items():
+            (tmp / "recordings" / f"{name}.json").write_text(json.dumps({"truth": {"name": name}}))
+            cls = "control" if not hidden else ("pair" if len(hidden) == 2 else "weak")
+            manifest["recordings"][name] = {
+                "name": name, "file": f"recordings/{name}.json", "hidden": hidden,
+                "hidden_label": "+".join(hidden) or "none", "strength_class": cls, "peak_change_mm": 1.0,
+                "effects": [{"candidate": c, "q_equivalent": {"parameter": p, "value": v}} for c, p, v in qs]}
+        (tmp / "manifest.json").write_text(json.dumps(manifest))
+        build = tmp / "build"
+        build.mkdir()
+        (build / "breastsim").write_text(FAKE_BINARY)
+        (build / "breastsim").chmod(0o755)
+        (build / "answers.json").write_text(json.dumps(answers))
+        main([str(build), "--manifest", str(tmp / "manifest.json"), "--out", str(tmp / "out"), "--nice", "-1"])
+        s = json.loads((tmp / "out" / "summary.json").read_text())
+    expect = {("controls", "false_discoveries"): 1, ("controls", "of"): 2,
+              ("single_effect", "exact"): 1, ("single_effect", "of"): 2,
+              ("single_effect", "named_hidden_with_extra"): 1, ("pairs", "exact"): 1,
+              ("false_discovery_rate", "false_terms"): 2, ("false_discovery_rate", "named_terms"): 6,
+              ("coverage", "inside"): 3, ("coverage", "of"): 4}
+    bad = {k: (s[k[0]][k[1]], v) for k, v in expect.items() if s[k[0]][k[1]] != v}
+    if s["confusion"]["none"] != {"base_springs": 1, "skin": 0, "suspensory_ligament": 0,
+                                  "gland_core": 0, "none": 1}:
+        bad["confusion.none"] = s["confusion"]["none"]
+    if bad:
+        print(f"SELFTEST FAILED: {bad}")
+        return 1
+    print("selftest passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
