@@ -224,3 +224,101 @@ TEST(CoarseStart, IntermediateP2LevelSameEquilibriumInFewerFineNewtonIterations)
   EXPECT_LT(fine_newton[1], fine_newton[0]) << "through the P2 level " << fine_newton[1]
                                             << ", from the P1 mesh " << fine_newton[0];
 }
+
+namespace
+{
+/// The standing posture of the coarse default case.
+struct WarmStartCase
+{
+  Config c = fixtures::coarse_case();
+  std::unique_ptr<Model> m = fixtures::make_model(c);
+  ObservableProbe probe{*m, {0.0, c.number("geometry.H"), 0.0}};
+  NewtonSolver newton{*m, newton_options(c)};
+  Posture standing = named_posture("standing");
+  /// A guess setting u to `u` (local values).
+  Guess guess(const std::vector<T>& u)
+  {
+    Guess g;
+    g.set = [u](Model& model, std::string&)
+    {
+      auto x = model.displacement()->x()->mutable_array();
+      std::copy(u.begin(), u.end(), x.begin());
+      model.displacement()->x()->scatter_fwd();
+      return true;
+    };
+    return g;
+  }
+  std::vector<T> u() const
+  {
+    auto a = m->displacement()->x()->array();
+    return {a.begin(), a.end()};
+  }
+};
+} // namespace
+
+// The one fallback (solve_at_full_load): an admissible guess is used and
+// Newton converges from it at full load; a guess that inverts an element,
+// or one whose energy is not below that of u = 0, is refused and the load
+// ramped from u = 0, to the same equilibrium.
+TEST(SolverWarmStart, UsesOnlyAdmissibleGuessesAndFallsBackToTheRamp)
+{
+  WarmStartCase w;
+  const PostureResult rest = solve_posture(*w.m, w.newton, w.probe, w.standing, w.c);
+  EXPECT_FALSE(rest.converged_from_guess);
+  const std::vector<T> solution = w.u();
+
+  // The equilibrium itself, slightly disturbed: used, converged from it.
+  std::vector<T> near = solution;
+  for (auto& x : near)
+    x *= 0.99;
+  const PostureResult warm = solve_posture(*w.m, w.newton, w.probe, w.standing, w.c, w.guess(near));
+  EXPECT_TRUE(warm.converged_from_guess);
+  EXPECT_EQ(warm.path.steps, 1);
+  EXPECT_EQ(warm.path.failed_steps, 0);
+  EXPECT_LT(warm.path.newton_iterations, rest.path.newton_iterations);
+  EXPECT_NEAR(warm.observables.nipple[2], rest.observables.nipple[2], 1e-9);
+
+  // Inverted elements: u = -2 X flips every element (det F = -1).
+  std::vector<T> inverted(solution.size());
+  const auto X = w.m->space()->tabulate_dof_coordinates(false);
+  for (std::size_t i = 0; i < inverted.size(); ++i)
+    inverted[i] = -2 * X[i];
+  // Energy above u = 0's: the equilibrium mirrored (the breast lifted
+  // against gravity).
+  std::vector<T> lifted = solution;
+  for (auto& x : lifted)
+    x = -x;
+  for (const auto* bad : {&inverted, &lifted})
+  {
+    w.m->displacement()->x()->set(0.0);
+    set_gravity(*w.m, gravity_vector(0.0, w.c.number("gravity.g")));
+    const WarmStartReport r = solve_at_full_load(*w.m, w.newton, w.guess(*bad), LoadStepOptions{},
+                                                 "test", 1.0);
+    EXPECT_FALSE(r.used);
+    EXPECT_FALSE(r.converged);
+    EXPECT_FALSE(r.reason.empty());
+    EXPECT_GE(r.path.steps, 1);
+    const PostureResult fallback = solve_posture(*w.m, w.newton, w.probe, w.standing, w.c, w.guess(*bad));
+    EXPECT_FALSE(fallback.converged_from_guess);
+    EXPECT_EQ(fallback.path.newton_iterations, rest.path.newton_iterations);
+    const auto [diff, scale] = fixtures::max_difference(w.u(), solution);
+    EXPECT_LT(diff, 1e-8 * scale);
+  }
+}
+
+// The coarse start's guess goes through the same check: a guess is "used"
+// only when admissible, and the report says why not otherwise.
+TEST(SolverWarmStart, InadmissibleGuessNamesTheReason)
+{
+  WarmStartCase w;
+  set_gravity(*w.m, gravity_vector(0.0, w.c.number("gravity.g")));
+  w.m->set_parameter("load", {1.0});
+  w.m->displacement()->x()->set(0.0);
+  const double e0 = w.m->energy();
+  EXPECT_NE(inadmissible_guess(*w.m, e0).find("energy"), std::string::npos); // u = 0 itself
+  const auto X = w.m->space()->tabulate_dof_coordinates(false);
+  auto x = w.m->displacement()->x()->mutable_array();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = -2 * X[i];
+  EXPECT_NE(inadmissible_guess(*w.m, e0).find("det F"), std::string::npos);
+}

@@ -4,8 +4,12 @@
 #include "fixtures.hpp"
 #include "newton.hpp"
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <gtest/gtest.h>
+#include <set>
+#include <unistd.h>
 
 using namespace breastsim;
 
@@ -21,7 +25,7 @@ int comm_size()
 double frobenius(Mat A)
 {
   PetscReal n;
-  MatNorm(A, NORM_FROBENIUS, &n);
+  PETSC_CHECK(MatNorm(A, NORM_FROBENIUS, &n));
   return n;
 }
 
@@ -42,22 +46,20 @@ class FastJacobian : public ::testing::TestWithParam<int>
 {
 };
 
-/// A copy of A's values (same pattern). Caller owns.
-Mat copy_of(Mat A)
+/// A copy of A's values (same pattern).
+PetscMat copy_of(Mat A)
 {
-  Mat B;
-  MatDuplicate(A, MAT_COPY_VALUES, &B);
+  PetscMat B;
+  PETSC_CHECK(MatDuplicate(A, MAT_COPY_VALUES, B.out()));
   return B;
 }
 
 /// |A - B|_F / |B|_F for matrices of the same pattern.
 double relative_difference(Mat A, Mat B)
 {
-  Mat D = copy_of(A);
-  MatAXPY(D, -1.0, B, SAME_NONZERO_PATTERN);
-  const double d = frobenius(D) / frobenius(B);
-  MatDestroy(&D);
-  return d;
+  PetscMat D = copy_of(A);
+  PETSC_CHECK(MatAXPY(D.get(), -1.0, B, SAME_NONZERO_PATTERN));
+  return frobenius(D.get()) / frobenius(B);
 }
 
 // Assemblies into a matrix of create_matrix() (pattern inserted and
@@ -73,42 +75,38 @@ TEST_P(FastJacobian, EqualsPetscInsertion)
   auto m = fixtures::make_model(c);
   m->set_parameter("g_vec", {0.0, -4.0, -9.0});
   fixtures::perturb(*m, 2e-3, 1);
-  Mat A = m->create_matrix();
+  PetscMat A(m->create_matrix());
   BlockCsrAdder probe(3);
-  probe.record(A);
-  ASSERT_TRUE(probe.matches(A)) << "an AIJ Jacobian has a 3x3-blocked pattern (" << comm_size()
+  probe.record(A.get());
+  ASSERT_TRUE(probe.matches(A.get())) << "an AIJ Jacobian has a 3x3-blocked pattern (" << comm_size()
                                 << " ranks)";
   // PETSc's insertion as the reference: into a duplicate the model's adder
   // has not recorded (A is recorded again by its next assembly).
   auto petsc_jacobian = [&]()
   {
-    Mat R;
-    MatDuplicate(A, MAT_DO_NOT_COPY_VALUES, &R);
-    m->assemble_jacobian(R);
+    PetscMat R;
+    PETSC_CHECK(MatDuplicate(A.get(), MAT_DO_NOT_COPY_VALUES, R.out()));
+    m->assemble_jacobian(R.get());
     return R;
   };
-  m->assemble_jacobian(A); // searched, offsets recorded
+  m->assemble_jacobian(A.get()); // searched, offsets recorded
   EXPECT_FALSE(m->last_jacobian_replayed());
-  Mat searched = copy_of(A);
-  m->assemble_jacobian(A); // replayed
+  PetscMat searched = copy_of(A.get());
+  m->assemble_jacobian(A.get()); // replayed
   EXPECT_TRUE(m->last_jacobian_replayed());
-  Mat reference = petsc_jacobian();
-  EXPECT_LE(relative_difference(searched, reference), 1e-14);
-  EXPECT_LE(relative_difference(A, reference), 1e-14);
-  MatDestroy(&reference);
-  MatDestroy(&searched);
+  PetscMat reference = petsc_jacobian();
+  EXPECT_LE(relative_difference(searched.get(), reference.get()), 1e-14);
+  EXPECT_LE(relative_difference(A.get(), reference.get()), 1e-14);
   // A new displacement: the replay writes the new values where PETSc does.
-  MatDestroy(&A);
-  A = m->create_matrix();
-  m->assemble_jacobian(A);
+  A.reset();
+  A = PetscMat(m->create_matrix());
+  m->assemble_jacobian(A.get());
   fixtures::perturb(*m, 3e-3, 2);
-  m->assemble_jacobian(A);
+  m->assemble_jacobian(A.get());
   EXPECT_TRUE(m->last_jacobian_replayed());
   reference = petsc_jacobian();
-  EXPECT_LE(relative_difference(A, reference), 1e-14);
-  EXPECT_GT(frobenius(reference), 0.0);
-  MatDestroy(&reference);
-  MatDestroy(&A);
+  EXPECT_LE(relative_difference(A.get(), reference.get()), 1e-14);
+  EXPECT_GT(frobenius(reference.get()), 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(P1AndP2, FastJacobian, ::testing::Values(1, 2));
@@ -117,13 +115,14 @@ INSTANTIATE_TEST_SUITE_P(P1AndP2, FastJacobian, ::testing::Values(1, 2));
 // 3x3-blocked, is never written through the recorded offsets.
 TEST(BlockCsrAdder, RefusesChangedOrUnblockedPatterns)
 {
-  Mat A;
-  MatCreateSeqAIJ(PETSC_COMM_SELF, 6, 6, 6, nullptr, &A);
+  PetscMat owner;
+  PETSC_CHECK(MatCreateSeqAIJ(PETSC_COMM_SELF, 6, 6, 6, nullptr, owner.out()));
+  Mat A = owner.get();
   for (PetscInt i = 0; i < 6; ++i)
     for (PetscInt j = 0; j < 3; ++j)
-      MatSetValue(A, i, j, 1.0, INSERT_VALUES); // blocks (0,0) and (1,0)
-  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+      PETSC_CHECK(MatSetValue(A, i, j, 1.0, INSERT_VALUES)); // blocks (0,0) and (1,0)
+  PETSC_CHECK(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   BlockCsrAdder adder(3);
   adder.record(A);
   ASSERT_TRUE(adder.matches(A));
@@ -142,19 +141,18 @@ TEST(BlockCsrAdder, RefusesChangedOrUnblockedPatterns)
     {
       PetscInt r = 3 + a, col = b;
       PetscScalar x;
-      MatGetValues(A, 1, &r, 1, &col, &x);
+      PETSC_CHECK(MatGetValues(A, 1, &r, 1, &col, &x));
       EXPECT_EQ(x, 1.0 + 3 * a + b);
     }
   // A new nonzero changes the pattern: the recorded offsets are stale.
-  MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
-  MatSetValue(A, 0, 5, 1.0, INSERT_VALUES);
-  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+  PETSC_CHECK(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  PETSC_CHECK(MatSetValue(A, 0, 5, 1.0, INSERT_VALUES));
+  PETSC_CHECK(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   EXPECT_FALSE(adder.matches(A));
   // Row 0 now has 4 entries, rows 1 and 2 three: not blocked, never usable.
   adder.record(A);
   EXPECT_FALSE(adder.matches(A));
-  MatDestroy(&A);
 }
 
 // The replay of recorded offsets: the same calls with the same key add
@@ -163,13 +161,14 @@ TEST(BlockCsrAdder, RefusesChangedOrUnblockedPatterns)
 // afresh; no key, or a re-recorded pattern, never replays.
 TEST(BlockCsrAdder, ReplaysOnlyTheRecordedSequence)
 {
-  Mat A;
-  MatCreateSeqAIJ(PETSC_COMM_SELF, 6, 6, 6, nullptr, &A);
+  PetscMat owner;
+  PETSC_CHECK(MatCreateSeqAIJ(PETSC_COMM_SELF, 6, 6, 6, nullptr, owner.out()));
+  Mat A = owner.get();
   for (PetscInt i = 0; i < 6; ++i)
     for (PetscInt j = 0; j < 6; ++j)
-      MatSetValue(A, i, j, 0.0, INSERT_VALUES); // all four 3x3 blocks
-  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+      PETSC_CHECK(MatSetValue(A, i, j, 0.0, INSERT_VALUES)); // all four 3x3 blocks
+  PETSC_CHECK(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PETSC_CHECK(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   BlockCsrAdder adder(3);
   adder.record(A);
   ASSERT_TRUE(adder.matches(A));
@@ -178,7 +177,7 @@ TEST(BlockCsrAdder, ReplaysOnlyTheRecordedSequence)
   // nodes; returns whether it was replayed and checks A against a dense sum.
   auto assemble = [&](const std::vector<Call>& calls, double s, const void* key)
   {
-    MatZeroEntries(A);
+    PETSC_CHECK(MatZeroEntries(A));
     double dense[6][6] = {};
     adder.begin(A, key);
     for (const auto& [nodes, v] : calls)
@@ -197,7 +196,7 @@ TEST(BlockCsrAdder, ReplaysOnlyTheRecordedSequence)
       for (PetscInt j = 0; j < 6; ++j)
       {
         PetscScalar x;
-        MatGetValues(A, 1, &i, 1, &j, &x);
+        PETSC_CHECK(MatGetValues(A, 1, &i, 1, &j, &x));
         EXPECT_EQ(x, dense[i][j]) << "entry (" << i << ", " << j << ")";
       }
     return adder.replayed();
@@ -226,7 +225,6 @@ TEST(BlockCsrAdder, ReplaysOnlyTheRecordedSequence)
   adder.record(A);                              // a new recording of the pattern
   EXPECT_FALSE(assemble(calls, 1.0, &other));
   EXPECT_TRUE(assemble(calls, 1.0, &other));
-  MatDestroy(&A);
 }
 
 TEST(InexactNewton, EisenstatWalkerForcing)
@@ -369,4 +367,132 @@ TEST(Newton, ConvergedAtTheLastAllowedIteration)
     needed = rep.iterations;
   }
   EXPECT_GT(needed, 2);
+}
+
+// Every Newton iteration is recorded (NewtonReport::records): one record per
+// iteration, the last one's |r| the final residual (below the tolerance),
+// the Krylov counts adding up to the report's, accepted steps in (0, 1] and
+// energies that never increase beyond round-off (the line search's rule).
+TEST(Newton, RecordsEveryIteration)
+{
+  auto c = fixtures::coarse_case();
+  for (const std::string linear : {"direct", "amg"})
+  {
+    SCOPED_TRACE(linear);
+    auto m = fixtures::make_model(c);
+    NewtonOptions o;
+    o.linear = linear;
+    NewtonSolver newton(*m, o);
+    const double f = set_gravity(*m, {0.0, 0.0, -9.81});
+    m->set_parameter("load", {0.5});
+    const double e0 = m->energy();
+    const NewtonReport rep = newton.solve(f);
+    ASSERT_TRUE(rep.converged) << rep.message;
+    ASSERT_GT(rep.iterations, 2);
+    ASSERT_EQ(rep.records.size(), static_cast<std::size_t>(rep.iterations));
+    EXPECT_GT(rep.initial_residual_norm, rep.tolerance);
+    EXPECT_LE(rep.records.back().residual_norm, rep.tolerance);
+    EXPECT_EQ(rep.records.back().residual_norm, rep.residual_norm);
+    EXPECT_EQ(rep.records.back().energy, m->energy());
+    int krylov = 0;
+    double e_prev = e0;
+    for (const NewtonRecord& r : rep.records)
+    {
+      krylov += r.linear_iterations;
+      EXPECT_GT(r.step, 0.0);
+      EXPECT_LE(r.step, 1.0);
+      EXPECT_GE(r.eta, 1e-10);
+      EXPECT_LE(r.eta, o.forcing_max);
+      EXPECT_GE(r.seconds, 0.0);
+      EXPECT_LE(r.energy, e_prev + 1e-12 * std::abs(e_prev));
+      e_prev = r.energy;
+    }
+    EXPECT_EQ(krylov, rep.linear_iterations);
+  }
+}
+
+// A load path keeps every Newton solve (LoadPathReport::solves), accepted
+// and rejected, with the parameter value it solved at.
+TEST(LoadStep, RecordsEveryNewtonSolveOfThePath)
+{
+  auto c = fixtures::coarse_case();
+  auto m = fixtures::make_model(c);
+  NewtonSolver newton(*m, NewtonOptions{});
+  const double f = set_gravity(*m, {0.0, 0.0, -9.81});
+  LoadStepOptions steps;
+  steps.initial_step = 0.25;
+  const LoadPathReport rep = continuation(*m, newton, "load", 0.0, 1.0, steps, "test", f);
+  ASSERT_EQ(rep.solves.size(), static_cast<std::size_t>(rep.steps + rep.failed_steps));
+  EXPECT_GE(rep.steps, 2);
+  int newton_its = 0, krylov = 0, converged = 0;
+  double last = 0;
+  for (const PathSolve& s : rep.solves)
+  {
+    EXPECT_EQ(s.newton.records.size(), static_cast<std::size_t>(s.newton.iterations));
+    newton_its += s.newton.iterations;
+    krylov += s.newton.linear_iterations;
+    converged += s.newton.converged ? 1 : 0;
+    if (s.newton.converged)
+    {
+      EXPECT_GT(s.value, last);
+      last = s.value;
+    }
+  }
+  EXPECT_EQ(converged, rep.steps);
+  EXPECT_EQ(newton_its, rep.newton_iterations);
+  EXPECT_EQ(krylov, rep.linear_iterations);
+  EXPECT_EQ(rep.solves.front().value, 0.25);
+  EXPECT_EQ(rep.solves.back().value, 1.0);
+  EXPECT_TRUE(rep.solves.back().newton.converged);
+}
+
+// `simulate` writes the records into summary.json ("newton_records", one
+// entry per posture in the order of "postures", one object per iteration),
+// and the posture objects keep exactly their keys.
+TEST(Newton, RecordsInSummaryJson)
+{
+  namespace fs = std::filesystem;
+  Config c = fixtures::coarse_case();
+  c.set("postures.names", std::vector<std::string>{"standing", "supine"});
+  const fs::path out = fs::temp_directory_path() / ("breastsim_newton_records_" + std::to_string(getpid()));
+  fs::remove_all(out);
+  const SimulationResult res = simulate(c, OutputTarget::claim(out.string(), {}, MPI_COMM_WORLD),
+                                        MPI_COMM_WORLD);
+  std::ifstream f(out / "summary.json");
+  const nlohmann::json j = nlohmann::json::parse(f);
+  ASSERT_EQ(j["postures"].size(), 2u);
+  ASSERT_EQ(j["newton_records"].size(), 2u);
+  for (std::size_t p = 0; p < 2; ++p)
+  {
+    const auto& posture = j["postures"][p];
+    std::set<std::string> keys;
+    for (const auto& [k, v] : posture.items())
+      keys.insert(k);
+    EXPECT_EQ(keys, (std::set<std::string>{"base_perimeter_m", "coarse_level_newton_iterations",
+                                           "coarse_newton_iterations", "coarse_start", "energy_J",
+                                           "failed_load_steps", "linear_iterations", "load_steps",
+                                           "min_det_F", "newton_iterations", "nipple_m", "posture",
+                                           "projection_m", "theta_deg", "volume_m3", "wall_time_s",
+                                           "z_max_m", "z_min_m"}));
+    const auto& entry = j["newton_records"][p];
+    EXPECT_EQ(entry["posture"], posture["posture"]);
+    const auto& records = entry["records"];
+    ASSERT_EQ(records.size(), posture["newton_iterations"].get<std::size_t>());
+    const auto& last = records.back();
+    EXPECT_EQ(last["load"].get<double>(), 1.0);
+    EXPECT_LE(last["residual_norm_N"].get<double>(), res.postures[p].path.solves.back().newton.tolerance);
+    // The solved half's energy; the observables report the full breast.
+    EXPECT_NEAR(2 * last["model_energy_J"].get<double>(), posture["energy_J"].get<double>(),
+                1e-12 * std::abs(posture["energy_J"].get<double>()));
+    int krylov = 0;
+    for (const auto& r : records)
+    {
+      for (const char* k : {"solve", "load", "iteration", "residual_norm_N", "model_energy_J", "step",
+                            "linear_iterations", "eta", "wall_time_s"})
+        EXPECT_TRUE(r.contains(k)) << k;
+      krylov += r["linear_iterations"].get<int>();
+    }
+    EXPECT_EQ(krylov, posture["linear_iterations"].get<int>());
+  }
+  fs::remove_all(out);
 }

@@ -65,28 +65,22 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
 {
   Model& m = *_model;
   auto x = m.displacement()->x()->mutable_array();
+  // Warm start: the equilibrium of the same posture at the previous
+  // parameters, solved directly at full load (solve_at_full_load: from rest
+  // with the gravity ramp of `simulate` if it is not admissible or fails).
+  Guess guess;
+  guess.name = "the last solution";
+  guess.quiet = true;
   if (!_last[i].empty())
-  {
-    // Warm start: the equilibrium of the same posture at the previous
-    // parameters, solved directly at full load.
-    const double f_ext = set_gravity(m, gravity_vector(_postures[i].theta_deg, c.number("gravity.g")));
-    m.set_parameter("load", {1.0});
-    std::copy(_last[i].begin(), _last[i].end(), x.begin());
-    m.displacement()->x()->scatter_fwd();
-    _newton->invalidate_preconditioner();
-    const NewtonReport r = _newton->solve(f_ext);
-    if (r.converged)
+    guess.set = [&](Model& model, std::string&)
     {
-      ++_warm_starts;
-      _last[i].assign(x.begin(), x.end());
-      return _probe->measure(m);
-    }
-    log::debug("warm start of posture '{}' failed ({}); solving from rest", _postures[i].name,
-               r.message);
-  }
-  // From rest with the gravity ramp of `simulate`.
-  std::fill(x.begin(), x.end(), 0.0);
-  PostureResult r = solve_posture(m, *_newton, *_probe, _postures[i], c);
+      std::copy(_last[i].begin(), _last[i].end(), x.begin());
+      model.displacement()->x()->scatter_fwd();
+      return true;
+    };
+  const PostureResult r = solve_posture(m, *_newton, *_probe, _postures[i], c, guess);
+  if (r.converged_from_guess)
+    ++_warm_starts;
   _last[i].assign(x.begin(), x.end());
   return r.observables;
 }

@@ -4,10 +4,12 @@
 #include "interrupt.hpp"
 #include "log.hpp"
 #include "output_target.hpp"
+#include "petsc.hpp"
 #include "command.hpp"
 #include <dolfinx/common/log.h>
+#include <dolfinx/common/timing.h>
+#include <functional>
 #include <iostream>
-#include <petscsys.h>
 
 namespace
 {
@@ -25,6 +27,58 @@ std::string unknown_subcommand(int argc, char** argv, const CLI::App& app)
     return a;
   }
   return "";
+}
+
+/// Run the parsed subcommand: its exit code, or that of its error (input 2,
+/// solve 3, anything else 1). With -v, dolfinx's timing table at the end.
+int run_command(const std::vector<breastsim::cli::Command>& commands)
+{
+  using namespace breastsim;
+  int code = 0;
+  try
+  {
+    for (const auto& c : commands)
+      if (c.app->parsed())
+        code = c.run();
+    // -v: dolfinx's timing table (collective: only when every rank finished)
+    if (spdlog::should_log(spdlog::level::debug) && code == 0)
+      dolfinx::list_timings(MPI_COMM_WORLD, {dolfinx::TimingType::wall});
+  }
+  catch (const InputError& e)
+  {
+    if (log::is_root())
+      std::cerr << "breastsim: input error: " << e.what() << "\n";
+    code = 2;
+  }
+  catch (const SolveError& e)
+  {
+    if (log::is_root())
+      std::cerr << "breastsim: solve failed: " << e.what() << "\n";
+    code = 3;
+  }
+  catch (const std::exception& e)
+  {
+    if (log::is_root())
+      std::cerr << "breastsim: error: " << e.what() << "\n";
+    code = 1;
+  }
+  return code;
+}
+
+/// A checked PETSc call outside any command (initialise, finalise): false,
+/// with the error printed, if it fails.
+bool petsc_ok(const std::function<void()>& checked_call)
+{
+  try
+  {
+    checked_call();
+    return true;
+  }
+  catch (const breastsim::PetscCallError& e)
+  {
+    std::cerr << "breastsim: error: " << e.what() << "\n";
+    return false;
+  }
 }
 } // namespace
 
@@ -70,36 +124,14 @@ int main(int argc, char** argv)
     return code == 0 ? 0 : 2;     // every command-line error is bad input
   }
 
-  PetscInitializeNoArguments();
+  if (!petsc_ok([] { PETSC_CHECK(PetscInitializeNoArguments()); }))
+    return 1;
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING; // dolfinx's own log
   spdlog::set_level(quiet ? spdlog::level::warn
                           : (verbose ? spdlog::level::debug : spdlog::level::info));
   spdlog::set_pattern("[%H:%M:%S] %v");
-  int code = 0;
-  try
-  {
-    for (const auto& c : commands)
-      if (c.app->parsed())
-        code = c.run();
-  }
-  catch (const InputError& e)
-  {
-    if (log::is_root())
-      std::cerr << "breastsim: input error: " << e.what() << "\n";
-    code = 2;
-  }
-  catch (const SolveError& e)
-  {
-    if (log::is_root())
-      std::cerr << "breastsim: solve failed: " << e.what() << "\n";
-    code = 3;
-  }
-  catch (const std::exception& e)
-  {
-    if (log::is_root())
-      std::cerr << "breastsim: error: " << e.what() << "\n";
-    code = 1;
-  }
-  PetscFinalize();
+  const int code = run_command(commands);
+  if (!petsc_ok([] { PETSC_CHECK(PetscFinalize()); }))
+    return code == 0 ? 1 : code;
   return code;
 }

@@ -34,6 +34,8 @@ Command add_simulate_command(CLI::App& root)
             auto res = simulate(c, out, MPI_COMM_WORLD);
             if (log::is_root())
             {
+              if (spdlog::should_log(spdlog::level::debug)) // -v
+                std::cout << newton_tables(res.postures);
               std::cout << observables_table(res.postures);
               std::cout << "results written to " << out.path().string()
                         << "/ (summary.json, case.resolved.toml, XDMF)\n";

@@ -34,7 +34,12 @@ Command add_surgery_command(CLI::App& root)
                                           {o->case_file});
             auto r = surgery(c, out, MPI_COMM_WORLD);
             if (log::is_root())
+            {
+              if (spdlog::should_log(spdlog::level::debug)) // -v
+                std::cout << newton_tables(r.pre, "pre-operative: ")
+                          << newton_tables(r.post, "post-operative: ");
               std::cout << surgery_table(r) << "results written to " << out.path().string() << "/\n";
+            }
             return 0;
           }};
 }

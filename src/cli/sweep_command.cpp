@@ -46,6 +46,10 @@ Command add_sweep_command(CLI::App& root)
             const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-sweep",
                                           {o->case_file});
             auto rows = sweep(c, grid, out, MPI_COMM_WORLD);
+            if (log::is_root() && spdlog::should_log(spdlog::level::debug)) // -v
+              for (const auto& row : rows)
+                std::cout << newton_tables(row.pre, sweep_label(row) + ", pre-operative: ")
+                          << newton_tables(row.post, sweep_label(row) + ", post-operative: ");
             if (log::is_root())
               std::cout << sweep_table(rows) << "results written to " << out.path().string()
                         << "/ (sweep.json, sweep.csv)\n";

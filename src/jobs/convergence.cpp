@@ -7,10 +7,10 @@
 #include "model_setup.hpp"
 #include "neutral_mesh.hpp"
 #include "surgery.hpp"
+#include "timer.hpp"
 #include "breastsim_registry.hpp"
 #include "mesh_from_gmsh.hpp"
 #include "nested_mesh.hpp"
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <dolfinx/common/IndexMap.h>
@@ -222,7 +222,7 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
       s.quantities.push_back({q, quantity(q).unit, {}, {}, {}});
     for (int l = 0; l < levels; ++l)
     {
-      const auto t0 = std::chrono::steady_clock::now();
+      Stopwatch clock("converge: one level");
       Config c = c0;
       c.set("geometry.order", std::int64_t(p));
       c.set("geometry.refinements", std::int64_t(l));
@@ -236,8 +236,7 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
       s.dofs.push_back(dofs);
       for (auto& q : s.quantities)
         q.values.push_back(quantity(q.name).get(v));
-      s.seconds.push_back(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      s.seconds.push_back(clock.seconds());
     }
     for (auto& q : s.quantities)
     {

@@ -4,21 +4,72 @@
 #include "neutral_mesh.hpp"
 #include "output.hpp"
 #include "surface_export.hpp"
+#include "timer.hpp"
 #include "viewer.hpp"
-#include <chrono>
 #include <fmt/format.h>
 
 namespace breastsim
 {
 namespace
 {
-using clock_type = std::chrono::steady_clock;
-double since(clock_type::time_point t0)
+/// One object per Newton iteration of a posture; "solve" numbers the Newton
+/// solves of the posture (from the guess, then each load step, rejected
+/// attempts included), "load" is the load factor it solved at.
+nlohmann::json records_json(const LoadPathReport& path)
 {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
+  nlohmann::json records = nlohmann::json::array();
+  for (std::size_t k = 0; k < path.solves.size(); ++k)
+  {
+    const auto& solve = path.solves[k];
+    for (std::size_t i = 0; i < solve.newton.records.size(); ++i)
+    {
+      const NewtonRecord& n = solve.newton.records[i];
+      records.push_back({{"solve", k},
+                         {"load", solve.value},
+                         {"iteration", i + 1},
+                         {"residual_norm_N", n.residual_norm},
+                         {"model_energy_J", n.energy},
+                         {"step", n.step},
+                         {"linear_iterations", n.linear_iterations},
+                         {"eta", n.eta},
+                         {"wall_time_s", n.seconds}});
+    }
+  }
+  return records;
+}
+} // namespace
+
+nlohmann::json newton_records_json(const std::vector<PostureResult>& rs)
+{
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& r : rs)
+    j.push_back({{"posture", r.posture.name}, {"records", records_json(r.path)}});
+  return j;
 }
 
-} // namespace
+std::string newton_table(const PostureResult& r)
+{
+  std::string s = fmt::format("Newton iterations of posture '{}' (theta = {:g} deg):\n", r.posture.name,
+                              r.posture.theta_deg);
+  s += fmt::format("{:>5} {:>6} {:>4} {:>11} {:>17} {:>7} {:>6} {:>8} {:>8}\n", "solve", "load", "it",
+                   "|r| [N]", "half energy[J]", "step", "ksp", "eta", "time[s]");
+  for (std::size_t k = 0; k < r.path.solves.size(); ++k)
+  {
+    const auto& solve = r.path.solves[k];
+    for (std::size_t i = 0; i < solve.newton.records.size(); ++i)
+    {
+      const NewtonRecord& n = solve.newton.records[i];
+      s += fmt::format("{:>5} {:>6.4g} {:>4} {:>11.4e} {:>17.10e} {:>7.4g} {:>6} {:>8.2e} {:>8.3f}\n", k,
+                       solve.value, i + 1, n.residual_norm, n.energy, n.step, n.linear_iterations,
+                       n.eta, n.seconds);
+    }
+    s += fmt::format("{:>5} {}: |r| = {:.3e} (tolerance {:.3e}) after {} iterations{}\n", "",
+                     solve.newton.converged ? "converged" : "failed", solve.newton.residual_norm,
+                     solve.newton.tolerance, solve.newton.iterations,
+                     solve.newton.message.empty() ? "" : " (" + solve.newton.message + ")");
+  }
+  return s;
+}
 
 nlohmann::json to_json(const PostureResult& r)
 {
@@ -54,6 +105,14 @@ std::string observables_table(const std::vector<PostureResult>& rs)
   return s;
 }
 
+std::string newton_tables(const std::vector<PostureResult>& rs, const std::string& heading)
+{
+  std::string s;
+  for (const auto& r : rs)
+    s += heading + newton_table(r);
+  return s;
+}
+
 std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
                                           const Config& c, const std::filesystem::path& dir,
                                           CoarseStart* coarse)
@@ -74,9 +133,13 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
 {
   SimulationResult res;
   check_picture_tools(comm); // fail before the solves, not after
-  auto t0 = clock_type::now();
-  auto mesh = build_neutral_mesh(c, comm);
-  res.mesh_seconds = since(t0);
+  auto mesh = [&]
+  {
+    Stopwatch meshing("simulate: mesh");
+    auto m = build_neutral_mesh(c, comm);
+    res.mesh_seconds = meshing.seconds();
+    return m;
+  }();
   res.quality = mesh_quality(*mesh.mesh);
   log::info("mesh: {} tetrahedra (P{}), min/max dihedral {:.1f}/{:.1f} deg, min radius ratio "
             "{:.3f}, {:.2f} s",
@@ -134,6 +197,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   j["postures"] = nlohmann::json::array();
   for (const auto& r : res.postures)
     j["postures"].push_back(to_json(r));
+  j["newton_records"] = newton_records_json(res.postures);
   write_json(dir.path() / "summary.json", j, comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
   render_pictures(dir.path(), {}, comm);

@@ -34,4 +34,14 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
 /// Short printable table of the observables of each posture.
 std::string observables_table(const std::vector<PostureResult>& r);
 nlohmann::json to_json(const PostureResult& r);
+/// Every Newton iteration of each posture, in the order of `r`: a list of
+/// {"posture", "records": [{"solve", "load", "iteration", "residual_norm_N",
+/// "model_energy_J", "step", "linear_iterations", "eta", "wall_time_s"}, ...]}
+/// (summary.json "newton_records"). The residual and the energy are those of
+/// the solved half (the posture's "energy_J" is the full breast's, twice).
+nlohmann::json newton_records_json(const std::vector<PostureResult>& r);
+/// The Newton iterations of one posture as a table (printed with -v).
+std::string newton_table(const PostureResult& r);
+/// newton_table of each posture, each headed by `heading` (e.g. "post-operative: ").
+std::string newton_tables(const std::vector<PostureResult>& r, const std::string& heading = "");
 } // namespace breastsim

@@ -7,8 +7,8 @@
 #include "log.hpp"
 #include "output.hpp"
 #include "reference_reset.hpp"
+#include "timer.hpp"
 #include "viewer.hpp"
-#include <chrono>
 #include <dolfinx/io/XDMFFile.h>
 #include <fmt/format.h>
 
@@ -16,12 +16,6 @@ namespace breastsim
 {
 namespace
 {
-using clock_type = std::chrono::steady_clock;
-double since(clock_type::time_point t0)
-{
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
-}
-
 std::array<int, 5> suture_tags()
 {
   return {generated::tag("base"), generated::tag("skin"), generated::tag("symmetry"),
@@ -59,7 +53,7 @@ double max_suture_gap(const Model& m)
 
 SutureReport close_sutures(Model& model, const Config& c)
 {
-  const auto t0 = clock_type::now();
+  Stopwatch clock("surgery: sutures");
   SutureReport rep;
   model.set_term("sutures", true);
   model.set_term("gravity", false); // knitting happens in the neutral (gravity-free) state
@@ -87,22 +81,29 @@ SutureReport close_sutures(Model& model, const Config& c)
   }
   rep.k_final = k;
   model.set_term("gravity", c.flag("terms.gravity"));
-  rep.seconds = since(t0);
+  rep.seconds = clock.seconds();
   return rep;
 }
 
-SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
+namespace
 {
-  SurgeryResult r;
+/// The three meshes of a surgery.
+struct SurgeryMeshes
+{
+  TaggedDolfinxMesh pre;      ///< the neutral cap
+  TaggedDolfinxMesh cut;      ///< the remaining body after the incision
+  TaggedDolfinxMesh resected; ///< the resected tissue
+};
+
+/// Mesh the neutral cap, the remaining body and the resected part; their
+/// quality, the meshing time and the exact cap volume into `r`.
+SurgeryMeshes mesh_surgery(const Config& c, MPI_Comm comm, SurgeryResult& r)
+{
+  Stopwatch clock("surgery: meshing");
   const auto cap = cap_spec(c);
   const auto inc = incision_spec(c);
-  r.incision = meshes::incision_geometry(cap, inc); // rejects bad parameters before any work
-  check_picture_tools(comm);
   int rank;
   MPI_Comm_rank(comm, &rank);
-
-  // Meshes: the neutral cap and the remaining body after the incision.
-  auto t0 = clock_type::now();
   auto pre_mesh = build_neutral_mesh(c, comm);
   meshes::TaggedMesh cut;
   cut.order = cap.order;
@@ -112,65 +113,85 @@ SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
     cut = meshes::mesh_incised_cap(cap, inc, suture_tags());
     resected = meshes::mesh_resected_part(cap, inc, suture_tags());
   }
-  auto cut_mesh = to_dolfinx(comm, cut, cap.order);
-  auto resected_mesh = to_dolfinx(comm, resected, cap.order);
-  r.seconds_mesh = since(t0);
-  r.quality_pre = mesh_quality(*pre_mesh.mesh);
-  r.quality_incised = mesh_quality(*cut_mesh.mesh);
-  r.quality_resected = mesh_quality(*resected_mesh.mesh);
+  SurgeryMeshes m{std::move(pre_mesh), to_dolfinx(comm, cut, cap.order),
+                  to_dolfinx(comm, resected, cap.order)};
+  r.seconds_mesh = clock.seconds();
+  r.quality_pre = mesh_quality(*m.pre.mesh);
+  r.quality_incised = mesh_quality(*m.cut.mesh);
+  r.quality_resected = mesh_quality(*m.resected.mesh);
   // Exact cap volume pi H^2 (3 Rs - H) / 3 (full breast), for the balance
   // kept + resected = cap in the report.
   const double Rs = meshes::sphere_radius(cap.R, cap.H);
   r.cap_volume = M_PI * cap.H * cap.H * (3 * Rs - cap.H) / 3;
+  return m;
+}
 
-  OutputDir dir(out, comm);
-  std::filesystem::create_directories(dir.path() / "preop");
-  std::filesystem::create_directories(dir.path() / "postop");
-
-  // 0. The resected tissue: its mesh (with the facet tags) and volume.
-  {
-    Model res(resected_mesh, Constraints{false, false});
-    r.resected_volume_mesh = 2 * res.volume();
-    if (c.flag("output.xdmf"))
-      write_mesh_xdmf(resected_mesh, dir.path() / "resected.xdmf");
-  }
-
-  // 1. Pre-operative breast.
-  t0 = clock_type::now();
-  Model pre(pre_mesh, Constraints{true, c.flag("base.fixed")});
-  apply_parameters(c, pre);
-  r.volume_pre = 2 * pre.volume();
-  log::info("surgery: pre-operative postures");
-  // The pre-operative breast is the case's neutral cap: grid sequencing as in
-  // `simulate` (the post-operative body has no coarse counterpart).
-  const auto coarse = make_coarse_start(c, pre);
-  r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, cap.H, 0.0}), c, dir.path() / "preop",
-                         coarse.get());
-  r.seconds_pre = since(t0);
-
-  // 2. Incision and suturing (no gravity), 3. final neutral state.
-  Model post(cut_mesh, Constraints{true, c.flag("base.fixed")});
-  apply_parameters(c, post);
+/// 2. Incision and suturing (no gravity) of the remaining body `post`,
+/// 3. its final neutral state (the new reference); fields into `dir`.
+void incise_and_suture(Model& post, const Config& c, const std::filesystem::path& dir,
+                       SurgeryResult& r)
+{
   r.volume_remaining = 2 * post.volume();
   r.resected_volume = r.volume_pre - r.volume_remaining;
   log::info("surgery: resected volume {:.1f} cm^3 (full breast); closing the sutures",
             1e6 * r.resected_volume);
-  write_fields(post, dir.path() / "incised_neutral", c.flag("output.xdmf"), false);
+  write_fields(post, dir / "incised_neutral", c.flag("output.xdmf"), false);
   r.suture = close_sutures(post, c);
-  write_fields(post, dir.path() / "sutured", c.flag("output.xdmf"), c.flag("output.vtk"));
+  write_fields(post, dir / "sutured", c.flag("output.xdmf"), c.flag("output.vtk"));
   // The new nipple is the material point A (the transposed nipple).
   r.new_nipple_neutral = ObservableProbe(post, r.incision.A).measure(post).nipple;
   reset_reference(post);
   // The knitted faces now hold their sutured (new reference) positions
   // normal to their planes and still slide: gap = u . n.
   post.set_parameter("closure", {0.0});
-  write_fields(post, dir.path() / "final_neutral", c.flag("output.xdmf"), false);
+  write_fields(post, dir / "final_neutral", c.flag("output.xdmf"), false);
+}
+} // namespace
+
+SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
+{
+  SurgeryResult r;
+  r.incision = meshes::incision_geometry(cap_spec(c), incision_spec(c)); // rejects bad parameters first
+  check_picture_tools(comm);
+  SurgeryMeshes bodies = mesh_surgery(c, comm, r);
+  OutputDir dir(out, comm);
+  std::filesystem::create_directories(dir.path() / "preop");
+  std::filesystem::create_directories(dir.path() / "postop");
+
+  // 0. The resected tissue: its mesh (with the facet tags) and volume.
+  {
+    Model res(bodies.resected, Constraints{false, false});
+    r.resected_volume_mesh = 2 * res.volume();
+    if (c.flag("output.xdmf"))
+      write_mesh_xdmf(bodies.resected, dir.path() / "resected.xdmf");
+  }
+
+  // 1. Pre-operative breast: the case's neutral cap, with grid sequencing as
+  // in `simulate` (the post-operative body has no coarse counterpart).
+  {
+    Stopwatch clock("surgery: pre-operative postures");
+    Model pre(bodies.pre, Constraints{true, c.flag("base.fixed")});
+    apply_parameters(c, pre);
+    r.volume_pre = 2 * pre.volume();
+    log::info("surgery: pre-operative postures");
+    const auto coarse = make_coarse_start(c, pre);
+    r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, cap_spec(c).H, 0.0}), c,
+                           dir.path() / "preop", coarse.get());
+    r.seconds_pre = clock.seconds();
+  }
+
+  // 2., 3. Incision, sutures, final neutral state.
+  Model post(bodies.cut, Constraints{true, c.flag("base.fixed")});
+  apply_parameters(c, post);
+  incise_and_suture(post, c, dir.path(), r);
 
   // 4. Post-operative postures from the new reference (sutures stay knitted).
-  t0 = clock_type::now();
-  log::info("surgery: post-operative postures");
-  r.post = solve_postures(post, ObservableProbe(post, r.new_nipple_neutral), c, dir.path() / "postop");
-  r.seconds_post = since(t0);
+  {
+    Stopwatch clock("surgery: post-operative postures");
+    log::info("surgery: post-operative postures");
+    r.post = solve_postures(post, ObservableProbe(post, r.new_nipple_neutral), c, dir.path() / "postop");
+    r.seconds_post = clock.seconds();
+  }
 
   write_json(dir.path() / "summary.json", to_json(r), comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
@@ -210,6 +231,7 @@ nlohmann::json to_json(const SurgeryResult& r)
   j["postop"] = nlohmann::json::array();
   for (const auto& p : r.post)
     j["postop"].push_back(to_json(p));
+  j["newton_records"] = {{"preop", newton_records_json(r.pre)}, {"postop", newton_records_json(r.post)}};
   return j;
 }
 

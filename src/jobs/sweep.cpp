@@ -4,7 +4,7 @@
 #include "errors.hpp"
 #include "log.hpp"
 #include "output.hpp"
-#include <chrono>
+#include "timer.hpp"
 #include <fmt/format.h>
 
 namespace breastsim
@@ -48,7 +48,7 @@ SweepRow run_one(Config c, const std::map<std::string, Value>& values, const std
 {
   SweepRow row;
   row.parameters = values;
-  const auto t0 = std::chrono::steady_clock::now();
+  Stopwatch clock("sweep: one incision");
   try
   {
     for (const auto& [k, v] : values)
@@ -68,6 +68,8 @@ SweepRow run_one(Config c, const std::map<std::string, Value>& values, const std
     row.newton_iterations = r.suture.closure.newton_iterations;
     for (const auto& p : r.post)
       row.newton_iterations += p.path.newton_iterations;
+    row.pre = std::move(r.pre);
+    row.post = std::move(r.post);
   }
   catch (const InputError& e)
   {
@@ -77,7 +79,7 @@ SweepRow run_one(Config c, const std::map<std::string, Value>& values, const std
   {
     row.error = e.what();
   }
-  row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  row.seconds = clock.seconds();
   return row;
 }
 
@@ -159,6 +161,14 @@ std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const Out
   write_text(dir.path() / "sweep.txt", sweep_table(rows), comm);
   dir.commit();
   return rows;
+}
+
+std::string sweep_label(const SweepRow& row)
+{
+  std::string s;
+  for (const auto& [k, v] : row.parameters)
+    s += (s.empty() ? "" : ", ") + k + "=" + plain_text(v);
+  return s;
 }
 
 std::string sweep_table(const std::vector<SweepRow>& rows)

@@ -21,6 +21,7 @@ struct SweepRow
   double max_gap = 0;
   int newton_iterations = 0;
   double seconds = 0;
+  std::vector<PostureResult> pre, post; ///< the surgery's postures (Newton records)
 };
 
 /// Short names accepted by --vary (a, s, h, d) -> case keys; any other key
@@ -40,4 +41,6 @@ void check_sweep_request(const Config& base, const SweepGrid& grid);
 std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const OutputTarget& out,
                             MPI_Comm comm);
 std::string sweep_table(const std::vector<SweepRow>& rows);
+/// "key=value, ..." of a row's parameters.
+std::string sweep_label(const SweepRow& row);
 } // namespace breastsim

@@ -3,13 +3,13 @@
 #include "log.hpp"
 #include "point_location.hpp"
 #include "model_setup.hpp"
+#include "timer.hpp"
+#include "warm_start.hpp"
 #include <algorithm>
-#include <chrono>
 #include <dolfinx/fem/CoordinateElement.h>
 #include <dolfinx/fem/DofMap.h>
 #include <cmath>
 #include <fmt/format.h>
-#include <limits>
 #include <mpi.h>
 
 namespace breastsim
@@ -55,10 +55,9 @@ std::vector<NestedLevel> nested_ladder(const Config& c)
     return {};
   std::vector<NestedLevel> ladder;
   // Intermediate levels for P2 only: from the coarse P1 mesh a P2 Newton
-  // wanders at the lower pole (52k P2 tetrahedra: 17 fine iterations, 11
-  // through a 6 mm P2 level), a P1 Newton does not, and a 3.8 mm P1 level
-  // made the 194k P1 solve worse (16 fine iterations instead of 13;
-  // docs/PERFORMANCE.md).
+  // wanders at the lower pole, a P1 Newton does not, and an intermediate P1
+  // level made a fine P1 solve worse (docs/PERFORMANCE.md, "Figures moved
+  // from code comments").
   const std::int64_t levels = l.order >= 2 ? c.integer("solver.nested_levels") : 0;
   for (std::int64_t k = 0; k < levels; ++k)
   {
@@ -153,31 +152,32 @@ std::unique_ptr<Model> neutral_cap_level(const Config& level_case)
 CoarseStart::CoarseStart(const Config& c, const Model& fine, const LevelFactory& make_level)
     : _ladder(nested_ladder(c)), _load_steps(load_step_options(c))
 {
-  const auto t0 = std::chrono::steady_clock::now();
+  Stopwatch setup("coarse start: set-up");
   if (_ladder.empty())
     throw std::logic_error("CoarseStart: the coarse start does not apply to this case");
-  auto seconds_since = [](auto t)
-  { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
   for (const NestedLevel& l : _ladder)
   {
     const Config lc = level_config(c, l);
     Level level;
-    auto t = std::chrono::steady_clock::now();
-    level.model = make_level(lc);
-    level.newton = std::make_unique<NewtonSolver>(*level.model, newton_options(lc));
-    const double t_model = seconds_since(t);
-    t = std::chrono::steady_clock::now();
+    double t_model = 0;
+    {
+      Stopwatch model_clock("coarse start: level model");
+      level.model = make_level(lc);
+      level.newton = std::make_unique<NewtonSolver>(*level.model, newton_options(lc));
+      t_model = model_clock.seconds();
+    }
+    Stopwatch location("coarse start: node location");
     if (!_levels.empty())
       level.from_below = std::make_unique<NodeTransfer>(*_levels.back().model, *level.model);
     log::debug("coarse start, level {} ({}): mesh and model {:.2f} s, node location {:.2f} s",
-               _levels.size(), describe(l), t_model, seconds_since(t));
+               _levels.size(), describe(l), t_model, location.seconds());
     _levels.push_back(std::move(level));
   }
-  const auto t = std::chrono::steady_clock::now();
+  Stopwatch location("coarse start: node location");
   _to_fine = std::make_unique<NodeTransfer>(*_levels.back().model, fine);
   log::debug("coarse start: fine node location {:.2f} s; {} fine nodes outside the finest level's "
-             "mesh moved into their cell", seconds_since(t), _to_fine->moved());
-  _setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+             "mesh moved into their cell", location.seconds(), _to_fine->moved());
+  _setup_seconds = setup.seconds();
 }
 
 CoarseStart::~CoarseStart() = default;
@@ -198,30 +198,16 @@ int CoarseStart::solve_from_below(std::size_t k, const std::array<double, 3>& g,
   Model& m = *level.model;
   const std::string context = fmt::format("coarse start, level {} ({})", k, describe(_ladder[k]));
   const double f = set_gravity(m, g);
-  m.set_parameter("load", {1.0});
-  m.displacement()->x()->set(0.0);
-  const double e0 = m.energy();
-  level.from_below->apply(*_levels[k - 1].model, m);
-  const double detF = m.min_detF();
-  int iterations = 0;
-  if (detF > 0 && m.energy() < e0)
+  Guess below;
+  below.name = "the level below";
+  below.set = [&](Model& model, std::string&)
   {
-    level.newton->invalidate_preconditioner();
-    const NewtonReport nr = level.newton->solve(f);
-    iterations = nr.iterations;
-    if (nr.converged)
-      return iterations;
-    log::info("{}: Newton from the level below failed ({}); solving from u = 0", context, nr.message);
-  }
-  else
-    log::info("{}: the interpolant of the level below is not admissible (min det F = {:.3g}); "
-              "solving from u = 0", context, detF);
-  m.displacement()->x()->set(0.0);
-  m.set_parameter("load", {0.0});
+    level.from_below->apply(*_levels[k - 1].model, model);
+    return true;
+  };
   try
   {
-    const LoadPathReport p = continuation(m, *level.newton, "load", 0.0, 1.0, _load_steps, context, f);
-    return iterations + p.newton_iterations;
+    return solve_at_full_load(m, *level.newton, below, _load_steps, context, f).path.newton_iterations;
   }
   catch (const SolveError& e)
   {
@@ -230,13 +216,9 @@ int CoarseStart::solve_from_below(std::size_t k, const std::array<double, 3>& g,
   }
 }
 
-CoarseGuessReport CoarseStart::guess(Model& fine, const std::array<double, 3>& g)
+bool CoarseStart::solve_and_transfer(Model& fine, const std::array<double, 3>& g,
+                                     CoarseGuessReport& rep)
 {
-  CoarseGuessReport rep;
-  auto& x = *fine.displacement()->x();
-  x.set(0.0);
-  const double e0 = fine.energy();
-
   // 1. The coarse P1 posture, from its neutral state, with the usual load
   // path; then each level above from the one below.
   Model& coarse = *_levels.front().model;
@@ -269,25 +251,25 @@ CoarseGuessReport CoarseStart::guess(Model& fine, const std::array<double, 3>& g
   {
     if (rep.reason.empty())
       rep.reason = "the coarse solve failed on another rank";
-    return rep;
+    return false;
   }
-
   // 2. The finest level's interpolant at the fine nodes.
   transfer_to(fine);
+  return true;
+}
 
-  // 3. Use it only if it is admissible and better than the neutral state.
-  const double detF = fine.min_detF();
-  const double e = detF > 0 ? fine.energy() : std::numeric_limits<double>::quiet_NaN();
-  if (!(detF > 0))
-    rep.reason = fmt::format("its interpolant inverts a fine element (min det F = {:.3g})", detF);
-  else if (!(e < e0))
-    rep.reason = fmt::format("its interpolant does not lower the energy ({:.6g} J vs {:.6g} J at u = 0)", e, e0);
-  else
-  {
-    rep.used = true;
-    return rep;
-  }
+CoarseGuessReport CoarseStart::guess(Model& fine, const std::array<double, 3>& g)
+{
+  CoarseGuessReport rep;
+  auto& x = *fine.displacement()->x();
   x.set(0.0);
+  const double energy_at_rest = fine.energy();
+  if (!solve_and_transfer(fine, g, rep))
+    return rep;
+  rep.reason = inadmissible_guess(fine, energy_at_rest);
+  rep.used = rep.reason.empty();
+  if (!rep.used)
+    x.set(0.0);
   return rep;
 }
 } // namespace breastsim

@@ -10,15 +10,15 @@
 // one (or, for a uniformly refined case, one refinement fewer), kept while
 // they have at least 4x the coarse unknowns.
 //
-// Why: Newton's iteration count from u = 0 grows with the mesh (10, 14, 22
-// iterations at 5k, 50k, 200k tetrahedra, docs/PERFORMANCE.md); most of them
-// are spent far from the solution, where each one costs a fine Jacobian and
-// a fine linear solve. The coarse P1 problem finds the large deformation for
-// a fraction of that cost. For P2 that is not enough: from it the fine
-// Newton still wanders for a dozen iterations (52k P2: 16) at the lower pole
+// Why: Newton's iteration count from u = 0 grows with the mesh; most of the
+// iterations are spent far from the solution, where each one costs a fine
+// Jacobian and a fine linear solve. The coarse P1 problem finds the large
+// deformation for a fraction of that cost. For P2 that is not enough: from
+// it the fine Newton still wanders for a dozen iterations at the lower pole
 // near the base rim, where the P2 solution has features the coarse P1 one
-// lacks; from a P2 solution at twice the mesh size that phase is gone
-// (52k P2: 11, all full steps).
+// lacks; from a P2 solution at twice the mesh size that phase is gone (all
+// full steps). Iteration counts: docs/PERFORMANCE.md, "Figures moved from
+// code comments".
 //
 // Every level is built and solved on MPI_COMM_SELF on every rank: each rank
 // evaluates the level below at its own nodes (owned and ghost), so the
@@ -111,14 +111,19 @@ public:
   ~CoarseStart();
 
   /// Solve the ladder under gravity g (full load): the coarse P1 level from
-  /// u = 0 with the case's load stepping, each level above by Newton from the
-  /// interpolant of the one below (from u = 0 with the load ramp if that
-  /// interpolant is not admissible or Newton fails from it). Then set the
-  /// fine displacement to the interpolant of the finest level, with the fine
-  /// constraints applied. Not used (fine displacement left at 0) if a level
-  /// fails or the interpolant inverts a fine element or does not lower the
-  /// fine energy (at its current load) below that of u = 0. Collective on
-  /// the fine communicator.
+  /// u = 0 with the case's load stepping, each level above from the
+  /// interpolant of the one below (solve_at_full_load: Newton if that
+  /// interpolant is admissible, else or if Newton fails from it the load
+  /// ramp from u = 0). Then set the fine displacement to the interpolant of
+  /// the finest level, with the fine constraints applied. False (fine
+  /// displacement untouched, reason in `rep`) if a level fails on any rank.
+  /// Collective on the fine communicator.
+  bool solve_and_transfer(Model& fine, const std::array<double, 3>& g, CoarseGuessReport& rep);
+
+  /// solve_and_transfer from u = 0 at the fine model's current load, then
+  /// the check of every guess (inadmissible_guess, warm_start.hpp): not used
+  /// (fine displacement left at 0) if the interpolant inverts a fine element
+  /// or does not lower the fine energy below that of u = 0. Collective.
   CoarseGuessReport guess(Model& fine, const std::array<double, 3>& g);
 
   /// Set the fine displacement to the interpolant of the finest level's
@@ -144,7 +149,8 @@ private:
     std::unique_ptr<NewtonSolver> newton;
     std::unique_ptr<NodeTransfer> from_below; ///< level k-1 -> k (none for level 0)
   };
-  /// Solve level k (k >= 1) from the interpolant of level k-1.
+  /// Solve level k (k >= 1) from the interpolant of level k-1: its Newton
+  /// iterations, or -1 (reason set) if it fails.
   int solve_from_below(std::size_t k, const std::array<double, 3>& g, std::string& reason);
   std::vector<NestedLevel> _ladder;
   std::vector<Level> _levels;

@@ -2,7 +2,6 @@
 #include "errors.hpp"
 #include "log.hpp"
 #include <algorithm>
-#include <dolfinx/la/petsc.h>
 #include <fmt/format.h>
 
 namespace breastsim
@@ -13,6 +12,27 @@ LoadStepOptions load_step_options(const Config& c)
   o.initial_step = c.number("solver.initial_load_step");
   o.min_step = c.number("solver.min_load_step");
   return o;
+}
+
+void LoadPathReport::add(double value, NewtonReport r)
+{
+  newton_iterations += r.iterations;
+  linear_iterations += r.linear_iterations;
+  if (r.converged)
+    ++steps;
+  else
+    ++failed_steps;
+  solves.push_back({value, std::move(r)});
+}
+
+void LoadPathReport::append(LoadPathReport later)
+{
+  steps += later.steps;
+  failed_steps += later.failed_steps;
+  newton_iterations += later.newton_iterations;
+  linear_iterations += later.linear_iterations;
+  for (auto& s : later.solves)
+    solves.push_back(std::move(s));
 }
 
 LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::string& parameter,
@@ -27,13 +47,12 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
   while (s < 1.0)
   {
     const double s_try = std::min(1.0, s + ds);
-    model.set_parameter(parameter, {from + s_try * (to - from)});
-    NewtonReport nr = newton.solve(reference_norm);
-    rep.newton_iterations += nr.iterations;
-    rep.linear_iterations += nr.linear_iterations;
+    const double value = from + s_try * (to - from);
+    model.set_parameter(parameter, {value});
+    rep.add(value, newton.solve(reference_norm));
+    const NewtonReport& nr = rep.solves.back().newton;
     if (nr.converged)
     {
-      ++rep.steps;
       s = s_try;
       saved.assign(x.begin(), x.end());
       log::debug("{}: {} = {:.4g} converged in {} Newton iterations", context, parameter,
@@ -43,20 +62,19 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
     }
     else
     {
-      ++rep.failed_steps;
       // Restore the last converged state and cut the step back.
       std::copy(saved.begin(), saved.end(), x.begin());
       model.displacement()->x()->scatter_fwd();
       ds *= 0.5;
       log::debug("{}: step to {} = {:.4g} failed ({}); cutting back to {:.4g}", context,
-                 parameter, from + s_try * (to - from), nr.message, ds);
+                 parameter, value, nr.message, ds);
       if (ds < opt.min_step)
       {
         model.set_parameter(parameter, {from + s * (to - from)});
         throw SolveError(fmt::format(
             "{}: no convergence beyond {} = {:.6g} (fraction {:.4g} of the path) even with "
             "the smallest step {:.3g}; last failure: {}",
-            context, parameter, from + s_try * (to - from), s_try, opt.min_step, nr.message));
+            context, parameter, value, s_try, opt.min_step, nr.message));
       }
     }
   }

@@ -3,6 +3,7 @@
 // suture penalty, ...) with automatic step cut-back.
 #include "newton.hpp"
 #include <string>
+#include <vector>
 
 namespace breastsim
 {
@@ -16,12 +17,28 @@ struct LoadStepOptions
 /// The case's solver.initial_load_step and solver.min_load_step.
 LoadStepOptions load_step_options(const Config& c);
 
+/// One Newton solve on a path: the parameter's value and the solve's report
+/// (with its iteration records).
+struct PathSolve
+{
+  double value = 0;
+  NewtonReport newton;
+};
+
 struct LoadPathReport
 {
   int steps = 0;             ///< accepted steps
   int failed_steps = 0;      ///< rejected (cut back) attempts
   int newton_iterations = 0;
   int linear_iterations = 0;
+  /// Every Newton solve in order, rejected attempts included.
+  std::vector<PathSolve> solves;
+
+  /// Count one Newton solve at `value`: an accepted step if it converged,
+  /// else a rejected attempt.
+  void add(double value, NewtonReport r);
+  /// Add the steps, iterations and solves of a later part of the path.
+  void append(LoadPathReport later);
 };
 
 /// Drive model parameter `parameter` from `from` to `to` (fractions s in

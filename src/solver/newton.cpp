@@ -1,13 +1,25 @@
 #include "newton.hpp"
 #include "log.hpp"
+#include "timer.hpp"
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <dolfinx/la/petsc.h>
 #include <fmt/format.h>
 
 namespace breastsim
 {
+namespace
+{
+/// Run f, timed as `task` (also in dolfinx's timing table); its wall time [s].
+template <typename F>
+double timed(const std::string& task, F&& f)
+{
+  Stopwatch clock(task);
+  f();
+  return clock.seconds();
+}
+} // namespace
+
 NewtonOptions newton_options(const Config& c)
 {
   NewtonOptions o;
@@ -32,89 +44,82 @@ std::string resolved_linear_solver(const NewtonOptions& o, std::int64_t dofs)
 }
 
 NewtonSolver::NewtonSolver(Model& model, NewtonOptions options)
-    : _model(model), _opt(std::move(options))
+    : _model(model), _opt(std::move(options)), _A(_model.create_matrix()),
+      _r(_model.create_vector()), _du(_model.create_vector()), _u0(_model.create_vector()),
+      _lin(_model.create_vector())
 {
-  _A = _model.create_matrix();
-  _r = _model.create_vector();
-  _du = _model.create_vector();
-  _u0 = _model.create_vector();
-  _lin = _model.create_vector();
   _linear = resolved_linear_solver(_opt, _model.num_dofs());
   setup_ksp();
 }
 
-NewtonSolver::~NewtonSolver()
-{
-  KSPDestroy(&_ksp);
-  MatDestroy(&_A);
-  VecDestroy(&_r);
-  VecDestroy(&_du);
-  VecDestroy(&_u0);
-  VecDestroy(&_lin);
-}
+NewtonSolver::~NewtonSolver() = default;
 
 void NewtonSolver::setup_ksp()
 {
-  KSPCreate(_model.mesh().mesh->comm(), &_ksp);
-  KSPSetOperators(_ksp, _A, _A);
+  PETSC_CHECK(KSPCreate(_model.mesh().mesh->comm(), _ksp.out()));
+  KSP ksp = _ksp.get();
+  PETSC_CHECK(KSPSetOperators(ksp, _A.get(), _A.get()));
   PC pc;
-  KSPGetPC(_ksp, &pc);
+  PETSC_CHECK(KSPGetPC(ksp, &pc));
   if (_linear == "direct")
   {
     // LU (MUMPS) of the current or of an earlier Jacobian, inside GMRES so
     // that a reused factorisation still gives an exact Newton direction.
-    KSPSetType(_ksp, _opt.reuse_preconditioner ? KSPGMRES : KSPPREONLY);
-    KSPSetPCSide(_ksp, PC_RIGHT);
-    KSPSetTolerances(_ksp, 1e-10, 1e-50, 1e8, 60);
-    PCSetType(pc, PCLU);
-    PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
+    PETSC_CHECK(KSPSetType(ksp, _opt.reuse_preconditioner ? KSPGMRES : KSPPREONLY));
+    PETSC_CHECK(KSPSetPCSide(ksp, PC_RIGHT));
+    PETSC_CHECK(KSPSetTolerances(ksp, 1e-10, 1e-50, 1e8, 60));
+    PETSC_CHECK(PCSetType(pc, PCLU));
+    PETSC_CHECK(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   }
   else
   {
     // GMRES + smoothed-aggregation AMG. Not CG: far from equilibrium the
     // tangent is indefinite where the relaxed skin and tissue are compressed,
-    // and then CG stops (indefinite matrix or preconditioner: the Chebyshev
-    // smoothers' eigenvalue estimates assume SPD), which happened at the first
-    // load step on 2 ranks and for P2. GMRES (right preconditioned, so the
+    // and there CG stops (indefinite matrix or preconditioner: the Chebyshev
+    // smoothers' eigenvalue estimates assume SPD), e.g. at the first load
+    // step on 2 ranks and for P2. GMRES (right preconditioned, so the
     // tolerance is on the true residual) solves the indefinite systems too;
     // whether the direction descends is checked by the Newton loop, which
     // shifts the diagonal if not. The rigid-body modes of the displacement
     // dofs are the near-nullspace (block size 3), the interpolation is reused
     // across Newton iterations (the sparsity never changes).
-    KSPSetType(_ksp, KSPGMRES);
-    KSPGMRESSetRestart(_ksp, 100);
-    KSPSetPCSide(_ksp, PC_RIGHT);
-    KSPSetNormType(_ksp, KSP_NORM_UNPRECONDITIONED);
-    KSPSetTolerances(_ksp, 1e-8, 1e-50, 1e8, 1000);
-    PCSetType(pc, PCGAMG);
-    PCGAMGSetReuseInterpolation(pc, PETSC_TRUE);
+    PETSC_CHECK(KSPSetType(ksp, KSPGMRES));
+    PETSC_CHECK(KSPGMRESSetRestart(ksp, 100));
+    PETSC_CHECK(KSPSetPCSide(ksp, PC_RIGHT));
+    PETSC_CHECK(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+    PETSC_CHECK(KSPSetTolerances(ksp, 1e-8, 1e-50, 1e8, 1000));
+    PETSC_CHECK(PCSetType(pc, PCGAMG));
+    PETSC_CHECK(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE));
     // Plain (unsmoothed) aggregation and a small drop threshold: the
-    // smoothed prolongator's set-up cost more than its fewer Krylov
-    // iterations saved here (52k P1 tets, standing, inexact Newton: 3.8 s vs
-    // 6.2 s; 5k P2: 3.5 s vs 4.9 s; docs/PERFORMANCE.md).
-    PCGAMGSetNSmooths(pc, 0);
+    // smoothed prolongator's set-up costs more than its fewer Krylov
+    // iterations save (docs/PERFORMANCE.md, "Figures moved from code comments").
+    PETSC_CHECK(PCGAMGSetNSmooths(pc, 0));
     PetscReal threshold[] = {0.02};
-    PCGAMGSetThreshold(pc, threshold, 1);
-    auto V = _model.space();
-    const std::vector<double> X = V->tabulate_dof_coordinates(false);
-    const std::int32_t n = V->dofmap()->index_map->size_local();
-    Vec coords;
-    VecCreateMPI(_model.mesh().mesh->comm(), 3 * n, PETSC_DETERMINE, &coords);
-    VecSetBlockSize(coords, 3);
-    PetscScalar* c;
-    VecGetArray(coords, &c);
-    std::copy_n(X.begin(), 3 * n, c);
-    VecRestoreArray(coords, &c);
-    MatNullSpace ns;
-    MatNullSpaceCreateRigidBody(coords, &ns);
-    PetscInt bs;
-    MatGetBlockSize(_A, &bs);
-    log::debug("amg: matrix block size {}, rigid-body near-nullspace on {} local nodes", bs, n);
-    MatSetNearNullSpace(_A, ns);
-    MatNullSpaceDestroy(&ns);
-    VecDestroy(&coords);
+    PETSC_CHECK(PCGAMGSetThreshold(pc, threshold, 1));
+    set_near_nullspace();
   }
-  KSPSetFromOptions(_ksp); // --petsc-options override the defaults above
+  PETSC_CHECK(KSPSetFromOptions(ksp)); // --petsc-options override the defaults above
+}
+
+void NewtonSolver::set_near_nullspace()
+{
+  using PetscNullSpace = PetscOwned<MatNullSpace, MatNullSpaceDestroy>;
+  auto V = _model.space();
+  const std::vector<double> X = V->tabulate_dof_coordinates(false);
+  const std::int32_t n = V->dofmap()->index_map->size_local();
+  PetscVec coords;
+  PETSC_CHECK(VecCreateMPI(_model.mesh().mesh->comm(), 3 * n, PETSC_DETERMINE, coords.out()));
+  PETSC_CHECK(VecSetBlockSize(coords.get(), 3));
+  PetscScalar* c;
+  PETSC_CHECK(VecGetArray(coords.get(), &c));
+  std::copy_n(X.begin(), 3 * n, c);
+  PETSC_CHECK(VecRestoreArray(coords.get(), &c));
+  PetscNullSpace ns;
+  PETSC_CHECK(MatNullSpaceCreateRigidBody(coords.get(), ns.out()));
+  PetscInt bs;
+  PETSC_CHECK(MatGetBlockSize(_A.get(), &bs));
+  log::debug("amg: matrix block size {}, rigid-body near-nullspace on {} local nodes", bs, n);
+  PETSC_CHECK(MatSetNearNullSpace(_A.get(), ns.get()));
 }
 
 // The AMG levels, once GAMG has built them (the number of levels is only
@@ -122,61 +127,57 @@ void NewtonSolver::setup_ksp()
 // and the checks below re-apply the choices if not).
 //
 // Cycle (solver.amg_cycle, default w). GAMG's first, aggressive coarsening
-// (squared graph: 19428 -> 1002 rows at 5k P2) leaves large aggregates, and
-// with plain aggregation the coarse-grid correction is the weak part of the
-// V-cycle; a W-cycle visits each coarse level twice per visit of the next
-// finer one, which costs little (they are over 10x smaller) and reduces the
-// Krylov iterations as the mesh grows (standing posture, single runs: 194k
-// P2 tetrahedra 200 -> 154, 194k P1 104 -> 81, 5k P2 87 -> 80;
-// docs/PERFORMANCE.md). A -pc_mg_cycle_type given through --petsc-options
-// wins.
+// (squared graph) leaves large aggregates, and with plain aggregation the
+// coarse-grid correction is the weak part of the V-cycle; a W-cycle visits
+// each coarse level twice per visit of the next finer one, which costs
+// little (they are over 10x smaller) and reduces the Krylov iterations as
+// the mesh grows. A -pc_mg_cycle_type given through --petsc-options wins.
 //
 // Finest smoother (solver.amg_fine_smoother). With GAMG's default there, two
 // Chebyshev iterations preconditioned by Jacobi, the residual reduction per
-// GMRES iteration degrades with the mesh (last Newton solve of the standing
-// posture: 0.44 per iteration at 2.5k P1 unknowns, 0.80 at 107k); one
-// symmetric Gauss-Seidel sweep (SSOR, omega 1; Richardson, no eigenvalue
-// estimate) costs about as much and needs far fewer Krylov iterations:
-// 194k P1 tetrahedra 15.6 -> 11.2 s, 52k P2 53.5 -> 46.2 s (benchmark,
-// docs/PERFORMANCE.md).
+// GMRES iteration degrades with the mesh; one symmetric Gauss-Seidel sweep
+// (SSOR, omega 1; Richardson, no eigenvalue estimate) costs about as much
+// and needs far fewer Krylov iterations.
 // Only the finest level: on coarse levels (6 rigid-mode unknowns per
-// aggregate) PETSc's SOR stops with a zero pivot in its inode block inversion
-// (seen with SOR on all levels, and on level 3 of 5 of a 6 mm P2 mesh;
-// never on the finest).
+// aggregate) PETSc's SOR can stop with a zero pivot in its inode block
+// inversion (never on the finest).
+// Measurements of both choices: docs/PERFORMANCE.md, "Figures moved from
+// code comments".
 void NewtonSolver::configure_amg_levels()
 {
   PC pc;
-  KSPGetPC(_ksp, &pc);
+  PETSC_CHECK(KSPGetPC(_ksp.get(), &pc));
   PetscBool is_gamg;
-  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCGAMG, &is_gamg);
+  PETSC_CHECK(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCGAMG, &is_gamg));
   if (!is_gamg) // --petsc-options chose another preconditioner
     return;
   PetscInt levels = 0;
-  PCMGGetLevels(pc, &levels);
+  PETSC_CHECK(PCMGGetLevels(pc, &levels));
   if (levels < 2)
     return;
   const char* prefix = nullptr;
-  PCGetOptionsPrefix(pc, &prefix);
+  PETSC_CHECK(PCGetOptionsPrefix(pc, &prefix));
   PetscBool cycle_option = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, prefix, "-pc_mg_cycle_type", &cycle_option);
+  PETSC_CHECK(PetscOptionsHasName(nullptr, prefix, "-pc_mg_cycle_type", &cycle_option));
   if (!cycle_option)
-    PCMGSetCycleType(pc, _opt.amg_cycle == "w" ? PC_MG_CYCLE_W : PC_MG_CYCLE_V);
+    PETSC_CHECK(PCMGSetCycleType(pc, _opt.amg_cycle == "w" ? PC_MG_CYCLE_W : PC_MG_CYCLE_V));
 
   if (_opt.amg_fine_smoother != "sor")
     return;
   KSP smoother;
-  PCMGGetSmoother(pc, levels - 1, &smoother);
+  PETSC_CHECK(PCMGGetSmoother(pc, levels - 1, &smoother));
   PetscBool is_richardson;
-  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(smoother), KSPRICHARDSON, &is_richardson);
+  PETSC_CHECK(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(smoother), KSPRICHARDSON,
+                                     &is_richardson));
   if (is_richardson)
     return;
-  KSPSetType(smoother, KSPRICHARDSON);
-  KSPSetTolerances(smoother, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1);
-  KSPSetNormType(smoother, KSP_NORM_NONE); // no residual: PCSOR's Richardson path
-  KSPSetConvergenceTest(smoother, KSPConvergedSkip, nullptr, nullptr);
+  PETSC_CHECK(KSPSetType(smoother, KSPRICHARDSON));
+  PETSC_CHECK(KSPSetTolerances(smoother, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1));
+  PETSC_CHECK(KSPSetNormType(smoother, KSP_NORM_NONE)); // no residual: PCSOR's Richardson path
+  PETSC_CHECK(KSPSetConvergenceTest(smoother, KSPConvergedSkip, nullptr, nullptr));
   PC spc;
-  KSPGetPC(smoother, &spc);
-  PCSetType(spc, PCSOR); // SOR_LOCAL_SYMMETRIC_SWEEP, omega 1
+  PETSC_CHECK(KSPGetPC(smoother, &spc));
+  PETSC_CHECK(PCSetType(spc, PCSOR)); // SOR_LOCAL_SYMMETRIC_SWEEP, omega 1
   log::debug("amg: {}-cycle, finest of {} levels smoothed by one symmetric Gauss-Seidel sweep",
              cycle_option ? "option's" : _opt.amg_cycle, levels);
 }
@@ -215,6 +216,7 @@ int NewtonSolver::linear_solve(double rtol, std::string& msg, bool* indefinite)
 {
   if (indefinite)
     *indefinite = false;
+  KSP ksp = _ksp.get();
   // A rebuilt preconditioner continues from the iterate of a reused one that
   // ran out of its budget (GMRES minimises the residual: that iterate is no
   // worse than zero), so the iterations already spent are not lost.
@@ -223,23 +225,23 @@ int NewtonSolver::linear_solve(double rtol, std::string& msg, bool* indefinite)
   for (int attempt = 0; attempt < 2; ++attempt)
   {
     const bool fresh = _stale || !_opt.reuse_preconditioner || attempt == 1;
-    KSPSetReusePreconditioner(_ksp, fresh ? PETSC_FALSE : PETSC_TRUE);
-    KSPSetInitialGuessNonzero(_ksp, continue_from_du ? PETSC_TRUE : PETSC_FALSE);
+    PETSC_CHECK(KSPSetReusePreconditioner(ksp, fresh ? PETSC_FALSE : PETSC_TRUE));
+    PETSC_CHECK(KSPSetInitialGuessNonzero(ksp, continue_from_du ? PETSC_TRUE : PETSC_FALSE));
     // A reused preconditioner gets a short budget: past it, rebuilding is cheaper.
-    KSPSetTolerances(_ksp, rtol, 1e-50, 1e8,
-                     fresh ? 1000 : std::max(_opt.reuse_max_iterations, 2 * _fresh_iterations));
+    PETSC_CHECK(KSPSetTolerances(
+        ksp, rtol, 1e-50, 1e8, fresh ? 1000 : std::max(_opt.reuse_max_iterations, 2 * _fresh_iterations)));
     if (fresh && _linear == "amg")
     {
-      KSPSetUp(_ksp); // the hierarchy, then its finest smoother
+      PETSC_CHECK(KSPSetUp(ksp)); // the hierarchy, then its finest smoother
       configure_amg_levels();
     }
-    KSPSolve(_ksp, _r, _du);
-    KSPSetInitialGuessNonzero(_ksp, PETSC_FALSE);
-    _model.constrain_increment(_du);
+    PETSC_CHECK(KSPSolve(ksp, _r.get(), _du.get()));
+    PETSC_CHECK(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE));
+    _model.constrain_increment(_du.get());
     KSPConvergedReason reason;
-    KSPGetConvergedReason(_ksp, &reason);
+    PETSC_CHECK(KSPGetConvergedReason(ksp, &reason));
     PetscInt its;
-    KSPGetIterationNumber(_ksp, &its);
+    PETSC_CHECK(KSPGetIterationNumber(ksp, &its));
     total += static_cast<int>(its);
     if (fresh)
     {
@@ -265,172 +267,222 @@ int NewtonSolver::linear_solve(double rtol, std::string& msg, bool* indefinite)
 
 double NewtonSolver::residual_norm()
 {
-  _model.assemble_residual(_r);
+  _model.assemble_residual(_r.get());
   PetscReal n;
-  VecNorm(_r, NORM_2, &n);
+  PETSC_CHECK(VecNorm(_r.get(), NORM_2, &n));
   return n;
+}
+
+/// The running quantities of one solve.
+struct NewtonSolver::State
+{
+  double tol = 0;        ///< converged when |r| <= tol
+  double rnorm = 0;      ///< |r| of the current iterate
+  double rnorm_prev = 0; ///< |r| at the previous forcing term
+  double energy = 0;     ///< energy of the current iterate
+  double eta = 0;        ///< last forcing term
+  double remainder = -1; ///< |r(u + du) - r(u) - J du| of the last full step (-1: unknown)
+  /// A failed line search after an inexact solve is retried with an exact
+  /// one before the solve gives up.
+  bool force_exact = false;
+};
+
+bool NewtonSolver::stop_test(const State& s, NewtonReport& rep) const
+{
+  rep.residual_norm = s.rnorm;
+  if (!std::isfinite(s.rnorm) || !std::isfinite(s.energy))
+  {
+    rep.message = "non-finite residual or energy";
+    return true;
+  }
+  rep.converged = s.rnorm <= s.tol;
+  return rep.converged;
+}
+
+double NewtonSolver::forcing_term(const State& s, int iteration) const
+{
+  if (!_opt.inexact || s.force_exact)
+    return exact_rtol();
+  if (iteration == 0)
+    return s.eta;
+  return eisenstat_walker_forcing(s.rnorm, s.rnorm_prev, s.eta, s.tol, exact_rtol(),
+                                  _opt.forcing_max, s.remainder);
+}
+
+void NewtonSolver::shift_diagonal(double sigma)
+{
+  PetscVec d;
+  PETSC_CHECK(VecDuplicate(_r.get(), d.out()));
+  PETSC_CHECK(MatGetDiagonal(_A.get(), d.get()));
+  PETSC_CHECK(VecAbs(d.get()));
+  PETSC_CHECK(VecScale(d.get(), sigma));
+  PETSC_CHECK(MatDiagonalSet(_A.get(), d.get(), ADD_VALUES));
+}
+
+// The Newton direction J du = -r (_r holds -r). An indefinite tangent (a
+// compressed region far from equilibrium; CG reports it, LU gives a
+// non-descent direction, AMG-preconditioned GMRES may not converge on it)
+// has its diagonal shifted, A_ii += sigma |A_ii|, until the direction
+// descends (Levenberg-Marquardt style; exact Newton near the solution, where
+// the tangent is definite).
+NewtonSolver::Direction NewtonSolver::direction(double eta, std::string& msg)
+{
+  Direction d;
+  auto solve_and_test = [&]()
+  {
+    const int kits = linear_solve(eta, msg);
+    d.solved = kits >= 0;
+    d.descent = false;
+    if (!d.solved)
+      return;
+    d.linear_iterations += kits;
+    PetscScalar dot = 0;
+    PETSC_CHECK(VecDot(_r.get(), _du.get(), &dot));
+    d.slope = -dot; // dPi/dalpha at alpha = 0: r . du (_r is -r)
+    d.descent = d.slope < 0;
+  };
+  solve_and_test();
+  for (double sigma = 1e-2; !d.descent && sigma <= 1e2; sigma *= 10)
+  {
+    d.shifted = true;
+    shift_diagonal(sigma);
+    _stale = true; // factor the shifted matrix
+    PETSC_CHECK(KSPSetOperators(_ksp.get(), _A.get(), _A.get()));
+    solve_and_test();
+    log::debug("  newton: indefinite tangent, diagonal shift {:.0e}: {}", sigma,
+               d.descent ? "descent direction" : "not yet");
+  }
+  if (d.solved)
+    _stale = _stale || d.shifted; // never reuse the factors of a shifted matrix
+  return d;
+}
+
+// Backtracking: accept the first step with det F > 0 everywhere and either
+// an Armijo energy decrease, or (energy change at round-off level) a smaller
+// residual.
+double NewtonSolver::line_search(Vec u, double slope, State& s)
+{
+  PETSC_CHECK(VecCopy(u, _u0.get()));
+  double step = 2.0;
+  for (int k = 0; k <= _opt.max_backtracks; ++k)
+  {
+    step *= 0.5;
+    PETSC_CHECK(VecWAXPY(u, step, _du.get(), _u0.get()));
+    _model.set_displacement(u);
+    if (!(_model.min_detF() > 0))
+      continue;
+    const double e = _model.energy();
+    if (!std::isfinite(e))
+      continue;
+    const double tiny = 1e-12 * std::max(std::abs(s.energy), std::abs(e));
+    bool accepted = false;
+    if (e <= s.energy + 1e-4 * step * slope) // Armijo
+      accepted = true;
+    else if (std::abs(e - s.energy) <= tiny)
+      accepted = residual_norm() < s.rnorm;
+    if (accepted)
+    {
+      s.energy = e;
+      return step;
+    }
+  }
+  PETSC_CHECK(VecCopy(_u0.get(), u));
+  _model.set_displacement(u);
+  return 0;
+}
+
+NewtonSolver::Outcome NewtonSolver::iterate(Vec u, State& s, NewtonReport& rep, NewtonRecord& record)
+{
+  const double t_jacobian = timed("newton: jacobian", [&] { _model.assemble_jacobian(_A.get()); });
+  Direction d;
+  bool track_remainder = false;
+  const double t_linear = timed("newton: direction", [&] {
+    PETSC_CHECK(KSPSetOperators(_ksp.get(), _A.get(), _A.get()));
+    PETSC_CHECK(VecScale(_r.get(), -1.0));
+    s.eta = record.eta = forcing_term(s, rep.iterations);
+    s.rnorm_prev = s.rnorm;
+    d = direction(s.eta, rep.message);
+    // Linear residual -(r + J du) of this step, for the remainder of a full
+    // step that predicts whether the next step can finish (forcing term).
+    // Only in the fast phase (eta < 0.1): one matrix-vector product.
+    track_remainder = d.solved && d.descent && _opt.inexact && !d.shifted && s.eta < 0.1;
+    if (track_remainder)
+    {
+      PETSC_CHECK(MatMult(_A.get(), _du.get(), _lin.get()));
+      PETSC_CHECK(VecAYPX(_lin.get(), -1.0, _r.get()));
+    }
+  });
+  rep.linear_iterations += d.linear_iterations;
+  record.linear_iterations = d.linear_iterations;
+  if (!d.solved)
+    return Outcome::stop; // the linear solver's message
+  if (!d.descent)
+  {
+    rep.message = "the Newton direction is not a descent direction (indefinite tangent)";
+    return Outcome::stop;
+  }
+
+  const double t_search = timed("newton: line search", [&] { record.step = line_search(u, d.slope, s); });
+  if (record.step == 0)
+  {
+    if (s.eta <= exact_rtol())
+    {
+      rep.message = "line search failed (no admissible decrease; det F <= 0 or energy increase)";
+      return Outcome::stop;
+    }
+    log::debug("  newton: line search failed after an inexact solve (eta {:.1e}); "
+               "retrying with an exact one", s.eta);
+    s.force_exact = true;
+    s.rnorm = record.residual_norm = residual_norm();
+    record.energy = s.energy;
+    return Outcome::next;
+  }
+  s.force_exact = false;
+  s.rnorm = record.residual_norm = residual_norm();
+  record.energy = s.energy;
+  s.remainder = -1;
+  if (track_remainder && record.step == 1.0)
+  {
+    PETSC_CHECK(VecAXPY(_lin.get(), 1.0, _r.get())); // r(u + du) - r(u) - J du
+    PETSC_CHECK(VecNorm(_lin.get(), NORM_2, &s.remainder));
+  }
+  log::debug("  newton {:2d}: |r| = {:.3e}, energy = {:.9e}, step = {:.3g}, ksp its = {} (eta {:.1e}){}; "
+             "time: jacobian {:.3f} s, linear {:.3f} s, line search {:.3f} s",
+             rep.iterations + 1, s.rnorm, s.energy, record.step, d.linear_iterations, s.eta,
+             s.remainder >= 0 ? fmt::format(", remainder {:.1e}", s.remainder) : std::string(),
+             t_jacobian, t_linear, t_search);
+  return Outcome::next;
 }
 
 NewtonReport NewtonSolver::solve(double reference_norm)
 {
   NewtonReport rep;
-  Vec u = dolfinx::la::petsc::create_vector_wrap(*_model.displacement()->x());
-  const double tol = std::max(_opt.atol, _opt.rtol * reference_norm);
-  double rnorm = residual_norm();
-  double energy = _model.energy();
-  double rnorm_prev = rnorm, eta = _opt.forcing_max;
-  double remainder = -1; // |r(u + du) - r(u) - J du| of the last full step (-1: unknown)
-  // A failed line search after an inexact solve is retried with an exact
-  // one before the solve gives up.
-  bool force_exact = false;
+  PetscVec u(dolfinx::la::petsc::create_vector_wrap(*_model.displacement()->x()));
+  State s;
+  s.tol = rep.tolerance = std::max(_opt.atol, _opt.rtol * reference_norm);
+  s.rnorm = rep.initial_residual_norm = residual_norm();
+  s.energy = _model.energy();
+  s.rnorm_prev = s.rnorm;
+  s.eta = _opt.forcing_max;
   for (rep.iterations = 0; rep.iterations < _opt.max_iterations; ++rep.iterations)
   {
-    rep.residual_norm = rnorm;
-    if (!std::isfinite(rnorm) || !std::isfinite(energy))
-    {
-      rep.message = "non-finite residual or energy";
+    if (stop_test(s, rep))
       break;
-    }
-    if (rnorm <= tol)
-    {
-      rep.converged = true;
+    Stopwatch clock("newton: iteration");
+    NewtonRecord record;
+    if (iterate(u.get(), s, rep, record) == Outcome::stop)
       break;
-    }
-    // Newton direction: J du = -r.
-    auto t0 = std::chrono::steady_clock::now();
-    _model.assemble_jacobian(_A);
-    auto t1 = std::chrono::steady_clock::now();
-    KSPSetOperators(_ksp, _A, _A);
-    VecScale(_r, -1.0);
-    if (!_opt.inexact || force_exact)
-      eta = exact_rtol();
-    else if (rep.iterations > 0)
-      eta = eisenstat_walker_forcing(rnorm, rnorm_prev, eta, tol, exact_rtol(), _opt.forcing_max,
-                                     remainder);
-    rnorm_prev = rnorm;
-    bool indefinite = false;
-    int kits = linear_solve(eta, rep.message, &indefinite);
-    auto t2 = std::chrono::steady_clock::now();
-    PetscScalar slope = 0; // dPi/dalpha at alpha = 0: r . du (r is negated)
-    auto descent = [&]()
-    {
-      if (kits < 0)
-        return false;
-      rep.linear_iterations += kits;
-      VecDot(_r, _du, &slope);
-      slope = -slope;
-      return slope < 0;
-    };
-    bool ok = descent();
-    // Indefinite tangent (a compressed region far from equilibrium; CG
-    // reports it, LU gives a non-descent direction, AMG-preconditioned GMRES
-    // may not converge on it): shift the diagonal,
-    // A_ii += sigma |A_ii|, until the direction descends (Levenberg-Marquardt
-    // style; exact Newton near the solution, where the tangent is definite).
-    bool shifted = false;
-    for (double sigma = 1e-2; !ok && sigma <= 1e2; sigma *= 10)
-    {
-      shifted = true;
-      Vec d;
-      VecDuplicate(_r, &d);
-      MatGetDiagonal(_A, d);
-      VecAbs(d);
-      VecScale(d, sigma);
-      MatDiagonalSet(_A, d, ADD_VALUES);
-      VecDestroy(&d);
-      _stale = true; // factor the shifted matrix
-      KSPSetOperators(_ksp, _A, _A);
-      kits = linear_solve(eta, rep.message, &indefinite);
-      ok = descent();
-      log::debug("  newton: indefinite tangent, diagonal shift {:.0e}: {}", sigma,
-                 ok ? "descent direction" : "not yet");
-    }
-    if (kits < 0)
-      break;
-    _stale = _stale || shifted; // never reuse the factors of a shifted matrix
-    if (!ok)
-    {
-      rep.message = "the Newton direction is not a descent direction (indefinite tangent)";
-      break;
-    }
-
-    // Linear residual -(r + J du) of this step, for the remainder of a full
-    // step that predicts whether the next step can finish (forcing term).
-    // Only in the fast phase (eta < 0.1): one matrix-vector product.
-    const bool track_remainder = _opt.inexact && !shifted && eta < 0.1;
-    if (track_remainder)
-    {
-      MatMult(_A, _du, _lin);
-      VecAYPX(_lin, -1.0, _r);
-    }
-
-    // Backtracking: accept the first step with det F > 0 everywhere and
-    // either an Armijo energy decrease, or (energy change at round-off level)
-    // a smaller residual.
-    VecCopy(u, _u0);
-    double step = 2.0;
-    bool accepted = false;
-    for (int k = 0; k <= _opt.max_backtracks && !accepted; ++k)
-    {
-      step *= 0.5;
-      VecWAXPY(u, step, _du, _u0);
-      _model.set_displacement(u);
-      if (!(_model.min_detF() > 0))
-        continue;
-      const double e = _model.energy();
-      if (!std::isfinite(e))
-        continue;
-      const double tiny = 1e-12 * std::max(std::abs(energy), std::abs(e));
-      if (e <= energy + 1e-4 * step * slope) // Armijo
-        accepted = true;
-      else if (std::abs(e - energy) <= tiny)
-      {
-        const double rn = residual_norm();
-        accepted = rn < rnorm;
-      }
-      if (accepted)
-        energy = e;
-    }
-    if (!accepted)
-    {
-      VecCopy(_u0, u);
-      _model.set_displacement(u);
-      if (eta > exact_rtol())
-      {
-        log::debug("  newton: line search failed after an inexact solve (eta {:.1e}); "
-                   "retrying with an exact one", eta);
-        force_exact = true;
-        rnorm = residual_norm();
-        continue;
-      }
-      rep.message = "line search failed (no admissible decrease; det F <= 0 or energy increase)";
-      break;
-    }
-    force_exact = false;
-    rnorm = residual_norm();
-    remainder = -1;
-    if (track_remainder && step == 1.0)
-    {
-      VecAXPY(_lin, 1.0, _r); // r(u + du) - r(u) - J du
-      VecNorm(_lin, NORM_2, &remainder);
-    }
-    auto t3 = std::chrono::steady_clock::now();
-    auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-    log::debug("  newton {:2d}: |r| = {:.3e}, energy = {:.9e}, step = {:.3g}, ksp its = {} (eta {:.1e}){}; "
-               "time: jacobian {:.3f} s, linear {:.3f} s, line search {:.3f} s",
-               rep.iterations + 1, rnorm, energy, step, kits, eta,
-               remainder >= 0 ? fmt::format(", remainder {:.1e}", remainder) : std::string(),
-               secs(t0, t1), secs(t1, t2), secs(t2, t3));
+    record.seconds = clock.seconds();
+    rep.records.push_back(record);
   }
-  if (!rep.converged && rep.iterations == _opt.max_iterations && rnorm <= tol)
+  if (!rep.converged && rep.iterations == _opt.max_iterations && s.rnorm <= s.tol)
   {
     rep.converged = true; // the last allowed iteration reached the tolerance
-    rep.residual_norm = rnorm;
+    rep.residual_norm = s.rnorm;
   }
   if (!rep.converged && rep.message.empty())
     rep.message = fmt::format("no convergence in {} iterations (|r| = {:.3e} > {:.3e})",
-                              _opt.max_iterations, rnorm, tol);
-  VecDestroy(&u);
+                              _opt.max_iterations, s.rnorm, s.tol);
   return rep;
 }
 } // namespace breastsim

@@ -5,8 +5,9 @@
 // an inverted element (det F <= 0) nor an energy increase.
 #include "config.hpp"
 #include "model.hpp"
-#include <petscksp.h>
+#include "petsc.hpp"
 #include <string>
+#include <vector>
 
 namespace breastsim
 {
@@ -37,13 +38,30 @@ struct NewtonOptions
 /// The case's solver.* Newton keys.
 NewtonOptions newton_options(const Config& c);
 
+/// One Newton iteration, as it ended.
+struct NewtonRecord
+{
+  double residual_norm = 0;  ///< |r| after the iteration [N]
+  double energy = 0;         ///< the model's total energy after the iteration [J]
+  /// Accepted step length (1: full Newton step); 0 when the line search
+  /// found no admissible step and the iterate was kept (the iteration is
+  /// then repeated with an exact linear solve).
+  double step = 0;
+  int linear_iterations = 0; ///< Krylov iterations (every attempt and diagonal shift)
+  double eta = 0;            ///< forcing term: relative tolerance of the linear solve
+  double seconds = 0;        ///< wall time of the iteration [s]
+};
+
 struct NewtonReport
 {
   bool converged = false;
   int iterations = 0;
   int linear_iterations = 0;
   double residual_norm = 0;
+  double initial_residual_norm = 0; ///< |r| at the start [N]
+  double tolerance = 0;             ///< max(atol, rtol * reference norm) [N]
   std::string message;
+  std::vector<NewtonRecord> records; ///< one per iteration (records.size() == iterations)
 };
 
 /// Eisenstat-Walker (1996) forcing term, choice 2, for the linear solve of
@@ -81,20 +99,58 @@ public:
   int preconditioner_setups() const { return _setups; }
 
 private:
+  /// The running quantities of one solve (newton.cpp).
+  struct State;
+  /// A Newton direction: Krylov iterations spent, whether the last linear
+  /// solve succeeded and descends, the slope r . du, and whether the
+  /// diagonal was shifted.
+  struct Direction
+  {
+    int linear_iterations = 0;
+    bool solved = false;
+    bool descent = false;
+    double slope = 0;
+    bool shifted = false;
+  };
+  enum class Outcome
+  {
+    next,  ///< iteration done (recorded), go on
+    stop   ///< the solve cannot go on (message set)
+  };
+
   void setup_ksp();
+  /// The rigid-body modes of the displacement as the matrix's near-nullspace.
+  void set_near_nullspace();
   /// After an AMG set-up: the cycle (amg_cycle) and the finest level's
   /// smoother (amg_fine_smoother).
   void configure_amg_levels();
   /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
   /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
   int linear_solve(double rtol, std::string& msg, bool* indefinite = nullptr);
+  /// One Newton iteration from the state `s`: Jacobian, forcing term,
+  /// direction, line search, acceptance. Fills `record`.
+  Outcome iterate(Vec u, State& s, NewtonReport& rep, NewtonRecord& record);
+  /// Linear tolerance of this iteration: Eisenstat-Walker, or exact.
+  double forcing_term(const State& s, int iteration) const;
+  /// Solve for a descent direction, shifting the diagonal of an indefinite
+  /// tangent until the direction descends.
+  Direction direction(double eta, std::string& msg);
+  /// A_ii += sigma |A_ii|.
+  void shift_diagonal(double sigma);
+  /// Backtracking from u along _du: the accepted step (energy updated in
+  /// `s`), or 0 with u restored.
+  double line_search(Vec u, double slope, State& s);
+  /// Top of an iteration: true when the solve stops here (converged, or a
+  /// non-finite residual or energy).
+  bool stop_test(const State& s, NewtonReport& rep) const;
+
   Model& _model;
   NewtonOptions _opt;
   std::string _linear;
-  Mat _A = nullptr;
-  Vec _r = nullptr, _du = nullptr, _u0 = nullptr;
-  Vec _lin = nullptr; ///< linear residual -(r + J du) of the current step
-  KSP _ksp = nullptr;
+  PetscMat _A;
+  PetscVec _r, _du, _u0;
+  PetscVec _lin; ///< linear residual -(r + J du) of the current step
+  PetscKsp _ksp; ///< declared last: destroyed first
   bool _stale = true; ///< rebuild the preconditioner at the next solve
   int _setups = 0;
   int _fresh_iterations = 1;
