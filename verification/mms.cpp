@@ -189,11 +189,7 @@ std::shared_ptr<const fem::DirichletBC<T>> symmetry_bc(const fem::FunctionSpace&
                                                        const TaggedDolfinxMesh& m)
 {
   auto V0 = V.sub({0});
-  std::vector<std::int32_t> facets;
-  const int sym = generated::tag("symmetry");
-  for (std::size_t i = 0; i < m.facets->values().size(); ++i)
-    if (m.facets->values()[i] == sym)
-      facets.push_back(m.facets->indices()[i]);
+  const auto facets = tagged_facets(*m.facets, generated::tag("symmetry"));
   auto dofs = fem::locate_dofs_topological(*V0, 2, facets);
   return std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), V0);
 }

@@ -10,6 +10,15 @@
 
 namespace breastsim
 {
+std::vector<std::int32_t> tagged_facets(const dolfinx::mesh::MeshTags<std::int32_t>& tags, int value)
+{
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < tags.values().size(); ++i)
+    if (tags.values()[i] == value)
+      out.push_back(tags.indices()[i]);
+  return out;
+}
+
 TaggedDolfinxMesh to_dolfinx(MPI_Comm comm, const meshes::TaggedMesh& m, int order)
 {
   using namespace dolfinx;

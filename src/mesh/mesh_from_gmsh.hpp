@@ -6,6 +6,7 @@
 #include <dolfinx/mesh/MeshTags.h>
 #include <memory>
 #include <mpi.h>
+#include <vector>
 
 namespace breastsim
 {
@@ -16,6 +17,9 @@ struct TaggedDolfinxMesh
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> facets;
   int degree = 1;
 };
+
+/// The local facets tagged `value` (in the order of the tags).
+std::vector<std::int32_t> tagged_facets(const dolfinx::mesh::MeshTags<std::int32_t>& tags, int value);
 
 /// Distribute `m` (data on rank 0 only; `order` must agree on all ranks).
 TaggedDolfinxMesh to_dolfinx(MPI_Comm comm, const meshes::TaggedMesh& m, int order);

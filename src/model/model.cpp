@@ -22,15 +22,6 @@ using namespace dolfinx;
 
 namespace
 {
-std::vector<std::int32_t> tagged_facets(const mesh::MeshTags<std::int32_t>& tags, int value)
-{
-  std::vector<std::int32_t> out;
-  for (std::size_t i = 0; i < tags.values().size(); ++i)
-    if (tags.values()[i] == value)
-      out.push_back(tags.indices()[i]);
-  return out;
-}
-
 /// Row-major 2D view used by Expression::eval.
 struct Table
 {

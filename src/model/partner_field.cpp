@@ -1,4 +1,5 @@
 #include "partner_field.hpp"
+#include "mesh_from_gmsh.hpp"
 #include "ghosted_assembly.hpp"
 #include "errors.hpp"
 #include <algorithm>
@@ -22,15 +23,6 @@ using namespace dolfinx;
 
 namespace
 {
-std::vector<std::int32_t> facets_with(const mesh::MeshTags<std::int32_t>& tags, int value)
-{
-  std::vector<std::int32_t> out;
-  for (std::size_t i = 0; i < tags.values().size(); ++i)
-    if (tags.values()[i] == value)
-      out.push_back(tags.indices()[i]);
-  return out;
-}
-
 /// How far reference point xi lies outside the reference tetrahedron
 /// (0 inside): max(0, -xi_0, -xi_1, -xi_2, xi_0 + xi_1 + xi_2 - 1).
 double outside(const std::array<double, 3>& xi)
@@ -62,7 +54,7 @@ std::array<std::vector<std::int32_t>, 2> partner_faces(const mesh::MeshTags<std:
                                                        const generated::PartnerInfo& info)
 {
   const int tag_a = generated::tag(info.face_a), tag_b = generated::tag(info.face_b);
-  auto faces_a = facets_with(facets, tag_a), faces_b = facets_with(facets, tag_b);
+  auto faces_a = tagged_facets(facets, tag_a), faces_b = tagged_facets(facets, tag_b);
   if (faces_a.empty() || faces_b.empty())
     throw InputError(fmt::format("energy term '{}': the mesh has no facets tagged {} (face A = {} ({}): {} "
                                  "facets, face B = {} ({}): {} facets); tag the two faces to sew",
