@@ -108,7 +108,7 @@ inline std::unique_ptr<Model> make_incised_model(const Config& c)
   const int order = static_cast<int>(c.integer("geometry.order"));
   tm.order = order;
   if (rank == 0)
-    tm = meshes::mesh_incised_cap(cap_spec(c), incision_spec(c), {1, 2, 3, 4, 5});
+    tm = meshes::mesh_incised_cap(HalfCapSpec::from(c), IncisionSpec::from(c), {1, 2, 3, 4, 5});
   auto m = std::make_unique<Model>(to_dolfinx(MPI_COMM_WORLD, tm, order));
   apply_parameters(c, *m);
   return m;

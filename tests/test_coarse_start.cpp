@@ -123,7 +123,7 @@ TEST(CoarseStart, SameEquilibriumAsFromRestInFewerFineNewtonIterations)
   ASSERT_TRUE(coarse_start_applies(c));
   auto m = fixtures::make_model(c);
   ObservableProbe probe(*m, {0.0, c.number("geometry.H"), 0.0});
-  NewtonSolver newton(*m, newton_options(c));
+  NewtonSolver newton(*m, NewtonOptions::from(c));
   const Posture standing = named_posture("standing");
 
   const PostureResult rest = solve_posture(*m, newton, probe, standing, c);
@@ -201,7 +201,7 @@ TEST(CoarseStart, IntermediateP2LevelSameEquilibriumInFewerFineNewtonIterations)
   c.set("postures.names", std::vector<std::string>{"standing"});
   auto m = fixtures::make_model(c);
   ObservableProbe probe(*m, {0.0, c.number("geometry.H"), 0.0});
-  NewtonSolver newton(*m, newton_options(c));
+  NewtonSolver newton(*m, NewtonOptions::from(c));
   const Posture standing = named_posture("standing");
   std::vector<double> u[2];
   int fine_newton[2];
@@ -233,7 +233,7 @@ struct WarmStartCase
   Config c = fixtures::coarse_case();
   std::unique_ptr<Model> m = fixtures::make_model(c);
   ObservableProbe probe{*m, {0.0, c.number("geometry.H"), 0.0}};
-  NewtonSolver newton{*m, newton_options(c)};
+  NewtonSolver newton{*m, NewtonOptions::from(c)};
   Posture standing = named_posture("standing");
   /// A guess setting u to `u` (local values).
   Guess guess(const std::vector<T>& u)

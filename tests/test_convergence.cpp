@@ -18,7 +18,7 @@ TEST(Convergence, StandingNippleDisplacementSettles)
     Config c = fixtures::coarse_case(1, 0.02);
     c.set("geometry.refinements", std::int64_t(level));
     auto m = fixtures::make_model(c);
-    NewtonSolver newton(*m, newton_options(c));
+    NewtonSolver newton(*m, NewtonOptions::from(c));
     ObservableProbe probe(*m, {0, c.number("geometry.H"), 0});
     auto r = solve_posture(*m, newton, probe, named_posture("standing"), c);
     dz.push_back(r.observables.nipple[2]);

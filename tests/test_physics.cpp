@@ -116,7 +116,7 @@ TEST(Physics, InvertedElementsAreRefused)
   c.set("base.c", 1.0);
   c.set("solver.min_load_step", 1.0 / 16);
   auto soft = fixtures::make_model(c);
-  NewtonSolver newton(*soft, newton_options(c));
+  NewtonSolver newton(*soft, NewtonOptions::from(c));
   ObservableProbe probe(*soft, {0, c.number("geometry.H"), 0});
   try
   {

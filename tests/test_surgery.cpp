@@ -55,11 +55,11 @@ TEST(Incision, ResectedVolumeMatchesTheAnalyticRegion)
   {
     Config c = surgery_case();
     c.set("incision.a_deg", a);
-    const auto cap = cap_spec(c);
-    const auto g = meshes::incision_geometry(cap, incision_spec(c));
+    const auto cap = HalfCapSpec::from(c);
+    const auto g = meshes::incision_geometry(cap, IncisionSpec::from(c));
     auto pre = fixtures::make_model(c);
     double cad = 0;
-    meshes::TaggedMesh tm = meshes::mesh_incised_cap(cap, incision_spec(c), {1, 2, 3, 4, 5}, &cad);
+    meshes::TaggedMesh tm = meshes::mesh_incised_cap(cap, IncisionSpec::from(c), {1, 2, 3, 4, 5}, &cad);
     Model cut(to_dolfinx(MPI_COMM_WORLD, tm, 1));
     // The exact cap volume minus the remaining body's CAD volume, and the
     // meshes' volumes, against the grid quadrature of the analytic region.
@@ -78,16 +78,16 @@ TEST(Incision, KeptAndResectedMeshesMakeUpTheCap)
   {
     Config c = surgery_case();
     c.set("incision.a_deg", a);
-    const auto cap = cap_spec(c);
-    const auto g = meshes::incision_geometry(cap, incision_spec(c));
+    const auto cap = HalfCapSpec::from(c);
+    const auto g = meshes::incision_geometry(cap, IncisionSpec::from(c));
     int rank;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     meshes::TaggedMesh kept_tm, res_tm;
     kept_tm.order = res_tm.order = 1;
     if (rank == 0)
     {
-      kept_tm = meshes::mesh_incised_cap(cap, incision_spec(c), {1, 2, 3, 4, 5});
-      res_tm = meshes::mesh_resected_part(cap, incision_spec(c), {1, 2, 3, 4, 5});
+      kept_tm = meshes::mesh_incised_cap(cap, IncisionSpec::from(c), {1, 2, 3, 4, 5});
+      res_tm = meshes::mesh_resected_part(cap, IncisionSpec::from(c), {1, 2, 3, 4, 5});
     }
     Model kept(to_dolfinx(MPI_COMM_WORLD, kept_tm, 1)), resected(to_dolfinx(MPI_COMM_WORLD, res_tm, 1));
     // Volumes of the two meshes (half model) against the exact half cap
@@ -113,14 +113,14 @@ TEST(Incision, ResectedPartMeshOfOrderTwoIsWritten)
   // analytic region and the XDMF (10-node tetrahedra, 6-node facet tags).
   Config c = surgery_case(0.012);
   c.set("geometry.order", std::int64_t(2));
-  const auto cap = cap_spec(c);
-  const auto g = meshes::incision_geometry(cap, incision_spec(c));
+  const auto cap = HalfCapSpec::from(c);
+  const auto g = meshes::incision_geometry(cap, IncisionSpec::from(c));
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   meshes::TaggedMesh tm;
   tm.order = 2;
   if (rank == 0)
-    tm = meshes::mesh_resected_part(cap, incision_spec(c), {1, 2, 3, 4, 5});
+    tm = meshes::mesh_resected_part(cap, IncisionSpec::from(c), {1, 2, 3, 4, 5});
   auto dm = to_dolfinx(MPI_COMM_WORLD, tm, 2);
   Model resected(dm);
   EXPECT_NEAR(2 * resected.volume() / analytic_resected_volume(cap, g), 1.0, 0.01);
@@ -141,9 +141,9 @@ TEST(Incision, ResectedPartMeshOfOrderTwoIsWritten)
 TEST(Incision, SutureFacesLieOnTheirPlanesWithTheAnalyticAreas)
 {
   Config c = surgery_case(0.004); // P1 faces: O(h^2) chord error along the skin
-  const auto cap = cap_spec(c);
-  const auto g = meshes::incision_geometry(cap, incision_spec(c));
-  meshes::TaggedMesh tm = meshes::mesh_incised_cap(cap, incision_spec(c), {1, 2, 3, 4, 5});
+  const auto cap = HalfCapSpec::from(c);
+  const auto g = meshes::incision_geometry(cap, IncisionSpec::from(c));
+  meshes::TaggedMesh tm = meshes::mesh_incised_cap(cap, IncisionSpec::from(c), {1, 2, 3, 4, 5});
   Model m(to_dolfinx(MPI_COMM_WORLD, tm, 1));
   const auto X = m.space()->tabulate_dof_coordinates(false);
   for (auto n : m.boundary_nodes("suture_abd"))
@@ -188,10 +188,10 @@ TEST(Incision, SutureFacesLieOnTheirPlanesWithTheAnalyticAreas)
 TEST(Incision, BadParametersAreRejectedByName)
 {
   Config c = surgery_case();
-  const auto cap = cap_spec(c);
+  const auto cap = HalfCapSpec::from(c);
   auto expect_reject = [&](const std::string& key, double value)
   {
-    auto inc = incision_spec(c);
+    auto inc = IncisionSpec::from(c);
     if (key == "incision.a_deg") inc.a_deg = value;
     if (key == "incision.s") inc.s = value;
     if (key == "incision.h") inc.h = value;
@@ -220,7 +220,7 @@ TEST(Sutures, ClosureReachesTheGapToleranceAndFacesSlide)
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (rank == 0)
-    tm = meshes::mesh_incised_cap(cap_spec(c), incision_spec(c), {1, 2, 3, 4, 5});
+    tm = meshes::mesh_incised_cap(HalfCapSpec::from(c), IncisionSpec::from(c), {1, 2, 3, 4, 5});
   Model m(to_dolfinx(MPI_COMM_WORLD, tm, 1));
   apply_parameters(c, m);
   const auto rep = close_sutures(m, c);
@@ -287,7 +287,7 @@ TEST(Sutures, BlockFaceSewnToAPlaneEndsOnItAndSlides)
   const auto rep = close_sutures(m, c);
   EXPECT_LE(rep.max_gap, 1e-4 * L);
   // Gravity along the plane (z): the sewn face slides down, still on the plane.
-  NewtonSolver newton(m, newton_options(c));
+  NewtonSolver newton(m, NewtonOptions::from(c));
   const double f = set_gravity(m, {0.0, 0.0, -9.81});
   continuation(m, newton, "load", 0.0, 1.0, LoadStepOptions{}, "block", f);
   auto u = m.displacement()->x()->array();

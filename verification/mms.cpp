@@ -1,4 +1,5 @@
 #include "mms.hpp"
+#include "geometry_options.hpp"
 #include "half_cap.hpp"
 #include "breastsim_registry.hpp"
 #include "errors.hpp"
@@ -102,9 +103,7 @@ TaggedDolfinxMesh mms_mesh(const Config& c, int order, double mesh_size, int ref
                            MPI_Comm comm, MmsMeshes kind)
 {
   const bool nested = kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped;
-  meshes::HalfCapSpec spec;
-  spec.R = c.number("geometry.R");
-  spec.H = c.number("geometry.H");
+  HalfCapSpec spec = HalfCapSpec::from(c); // the case's R and H; the level's mesh below
   spec.mesh_size = kind == MmsMeshes::gmsh_remesh ? mesh_size / std::pow(2.0, refinements) : mesh_size;
   spec.order = nested ? 1 : order;
   spec.refinements = kind == MmsMeshes::gmsh_split ? refinements : 0;
@@ -290,7 +289,8 @@ MmsStudy mms_study(const Config& c, int order, double mesh_size, int levels, MPI
   s.order = order;
   s.mesh_size = mesh_size;
   s.meshes = kind;
-  const double R = c.number("geometry.R"), H = c.number("geometry.H");
+  const HalfCapSpec cap = HalfCapSpec::from(c);
+  const double R = cap.R, H = cap.H;
   const double volume = M_PI * H * (3 * R * R + H * H) / 12; // the half cap
   for (int l = 0; l < levels; ++l)
   {

@@ -1,4 +1,5 @@
 #include "candidates.hpp"
+#include "term_switches.hpp"
 #include "errors.hpp"
 #include <fmt/format.h>
 #include <stdexcept>
@@ -44,7 +45,7 @@ const Candidate& candidate(const std::string& name)
 
 bool Candidate::applicable(const Config& c) const
 {
-  if (!c.flag("terms." + name))
+  if (!TermSwitches::from(c).is_on(name))
     return true;
   for (const auto& [key, value] : flags)
     if (c.flag(key) != value)

@@ -1,4 +1,5 @@
 #include "diagnosis_output.hpp"
+#include "geometry_options.hpp"
 #include "diagnose.hpp"
 #include "log.hpp"
 #include "output.hpp"
@@ -135,6 +136,8 @@ void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const
 std::string run_diagnosis(const Recording& rec, const Config& current, const DiagnoseOptions& o,
                           const OutputTarget& out, MPI_Comm comm)
 {
+  HalfCapSpec::from(current).require_parametric_cap(
+      "diagnose (its numerical noise floor solves on a finer mesh of the cap)");
   OutputDir dir(out, comm);
   const auto d = diagnose(rec, current, o, comm);
   write_diagnosis(dir.path(), d, rec, comm);

@@ -1,4 +1,5 @@
 #include "mesh_error.hpp"
+#include "geometry_options.hpp"
 #include "log.hpp"
 #include <cmath>
 
@@ -7,7 +8,7 @@ namespace breastsim::calibration
 Config finer(const Config& c, double ratio)
 {
   Config f = c;
-  f.set("geometry.mesh_size", c.number("geometry.mesh_size") / ratio);
+  f.set("geometry.mesh_size", HalfCapSpec::from(c).mesh_size / ratio);
   f.validate();
   return f;
 }
@@ -47,7 +48,7 @@ FitState with_numerical_uncertainty(const FitState& coarse, const FitState& fine
                                     std::vector<double>& se_numerical)
 {
   FitState f = fine;
-  f.config.set("geometry.mesh_size", coarse.config.number("geometry.mesh_size")); // the user's mesh
+  f.config.set("geometry.mesh_size", HalfCapSpec::from(coarse.config).mesh_size); // the user's mesh
   auto& u = f.uncertainty;
   for (std::size_t i = 0; i < f.values.size() && i < u.se_log.size(); ++i)
   {

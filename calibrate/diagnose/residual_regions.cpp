@@ -1,4 +1,5 @@
 #include "residual_regions.hpp"
+#include "geometry_options.hpp"
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -125,7 +126,7 @@ std::vector<Region> locate_regions(const Recording& rec, const FitState& f,
                                    int neighbours, double region_z)
 {
   std::vector<Region> regions;
-  const double R = f.config.number("geometry.R");
+  const double R = HalfCapSpec::from(f.config).R;
   for (std::size_t p = 0; p < rec.postures.size(); ++p)
   {
     const auto& pts = rec.postures[p].points;

@@ -1,4 +1,5 @@
 #include "calibrate.hpp"
+#include "geometry_options.hpp"
 #include "calibration_report.hpp"
 #include "checkpoint.hpp"
 #include "log.hpp"
@@ -177,6 +178,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
                             MPI_Comm comm)
 {
   const Stopwatch stopwatch("calibrate");
+  HalfCapSpec::from(start).require_parametric_cap("calibrate (R and H morph the cap)");
   check_algorithm(o.optimizer.algorithm);
   check_identifiable(fit);
   Checkpoint cp;

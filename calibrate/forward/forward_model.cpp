@@ -1,4 +1,5 @@
 #include "forward_model.hpp"
+#include "case_options.hpp"
 #include "cap_morph.hpp"
 #include "log.hpp"
 #include "model_setup.hpp"
@@ -24,7 +25,7 @@ void ForwardModel::attach_solver(const Config& c)
   // coordinates) depend on the node positions: rebuilt after every change.
   _newton.reset();
   _probe.reset();
-  _newton = std::make_unique<NewtonSolver>(*_model, newton_options(c));
+  _newton = std::make_unique<NewtonSolver>(*_model, NewtonOptions::from(c));
   _probe = std::make_unique<ObservableProbe>(*_model, std::array<double, 3>{0.0, _H, 0.0});
 }
 
@@ -32,14 +33,14 @@ void ForwardModel::rebuild(const Config& c)
 {
   _newton.reset();
   _probe.reset();
-  _model = std::make_unique<Model>(build_neutral_mesh(c, _comm),
-                                   Constraints{true, c.flag("base.fixed")});
-  _R = _R0 = c.number("geometry.R");
-  _H = _H0 = c.number("geometry.H");
-  _mesh_size = c.number("geometry.mesh_size");
-  _fixed_base = c.flag("base.fixed");
-  _order = static_cast<int>(c.integer("geometry.order"));
-  _refinements = static_cast<int>(c.integer("geometry.refinements"));
+  const CaseOptions o = CaseOptions::from(c);
+  _model = std::make_unique<Model>(build_neutral_mesh(c, _comm), Constraints{true, o.fixed_base});
+  _R = _R0 = o.geometry.R;
+  _H = _H0 = o.geometry.H;
+  _mesh_size = o.geometry.mesh_size;
+  _fixed_base = o.fixed_base;
+  _order = o.geometry.order;
+  _refinements = o.geometry.refinements;
   const auto x = _model->mesh().mesh->geometry().x();
   _X0.assign(x.begin(), x.end());
   attach_solver(c);
@@ -87,11 +88,11 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
 
 std::vector<Observables> ForwardModel::solve(const Config& c, const PostureVisitor& visit)
 {
-  const double R = c.number("geometry.R"), H = c.number("geometry.H");
-  const bool same_mesh = _model && c.number("geometry.mesh_size") == _mesh_size
-                         && static_cast<int>(c.integer("geometry.order")) == _order
-                         && static_cast<int>(c.integer("geometry.refinements")) == _refinements
-                         && c.flag("base.fixed") == _fixed_base;
+  const CaseOptions o = CaseOptions::from(c);
+  const double R = o.geometry.R, H = o.geometry.H;
+  const bool same_mesh = _model && o.geometry.mesh_size == _mesh_size
+                         && o.geometry.order == _order && o.geometry.refinements == _refinements
+                         && o.fixed_base == _fixed_base;
   if (!same_mesh || (!_morph && (R != _R || H != _H)))
     rebuild(c);
   else if (R != _R || H != _H)

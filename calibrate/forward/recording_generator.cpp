@@ -1,4 +1,5 @@
 #include "recording_generator.hpp"
+#include "case_options.hpp"
 #include "candidates.hpp"
 #include "errors.hpp"
 #include "fit_parameters.hpp"
@@ -52,6 +53,7 @@ std::vector<Point> sample_surface(const SkinSurface& s, int n, double sigma, std
 
 Recording synthetic_recording(const Config& c, const RecordingOptions& o, MPI_Comm comm)
 {
+  HalfCapSpec::from(c).require_parametric_cap("record (the truth is meshed finer)");
   if (o.points < 10 || o.points > 1000000)
     throw InputError(fmt::format("--points = {} is out of range: allowed [10, 1000000]", o.points));
   if (!(o.noise >= 0) || o.noise > 0.02)
@@ -59,7 +61,7 @@ Recording synthetic_recording(const Config& c, const RecordingOptions& o, MPI_Co
   if (!(o.value >= 0))
     throw InputError(fmt::format("--value = {} is out of range: allowed >= 0", o.value));
   Config truth = c;
-  const double h = o.mesh_size > 0 ? o.mesh_size : c.number("geometry.mesh_size") / 1.5;
+  const double h = o.mesh_size > 0 ? o.mesh_size : HalfCapSpec::from(c).mesh_size / 1.5;
   truth.set("geometry.mesh_size", h);
   double value = 0;
   if (!o.hidden.empty())
@@ -74,10 +76,11 @@ Recording synthetic_recording(const Config& c, const RecordingOptions& o, MPI_Co
   }
   truth.validate(); // e.g. mesh_size range
 
-  Model model(build_neutral_mesh(truth, comm), Constraints{true, truth.flag("base.fixed")});
+  const CaseOptions truth_case = CaseOptions::from(truth);
+  Model model(build_neutral_mesh(truth, comm), Constraints{true, truth_case.fixed_base});
   apply_parameters(truth, model);
-  NewtonSolver newton(model, newton_options(truth));
-  ObservableProbe probe(model, {0.0, truth.number("geometry.H"), 0.0});
+  NewtonSolver newton(model, NewtonOptions::from(truth));
+  ObservableProbe probe(model, {0.0, truth_case.geometry.H, 0.0});
   std::mt19937 gen(o.seed); // same sequence on every rank; used on rank 0
   std::normal_distribution<double> noise(0.0, o.noise);
   int rank;

@@ -1,4 +1,5 @@
 #include "synthetic.hpp"
+#include "case_options.hpp"
 #include "errors.hpp"
 #include "log.hpp"
 #include "model_setup.hpp"
@@ -11,7 +12,7 @@ namespace breastsim::calibration
 {
 Config measure_truth(Config c, const MeasureRequest& r)
 {
-  c.set("geometry.mesh_size", r.mesh_size > 0 ? r.mesh_size : 0.5 * c.number("geometry.mesh_size"));
+  c.set("geometry.mesh_size", r.mesh_size > 0 ? r.mesh_size : 0.5 * HalfCapSpec::from(c).mesh_size);
   c.validate();
   return c;
 }
@@ -31,10 +32,11 @@ nlohmann::json synthetic_measurements(const Config& truth, const SyntheticOption
     throw InputError(fmt::format("synthetic measurements: noise = {} must be >= 0 and sigma = {} "
                                  "> 0 m",
                                  o.noise, o.sigma));
-  Model model(build_neutral_mesh(truth, comm), Constraints{true, truth.flag("base.fixed")});
+  const CaseOptions truth_case = CaseOptions::from(truth);
+  Model model(build_neutral_mesh(truth, comm), Constraints{true, truth_case.fixed_base});
   apply_parameters(truth, model);
-  NewtonSolver newton(model, newton_options(truth));
-  ObservableProbe probe(model, {0.0, truth.number("geometry.H"), 0.0});
+  NewtonSolver newton(model, NewtonOptions::from(truth));
+  ObservableProbe probe(model, {0.0, truth_case.geometry.H, 0.0});
   // The same seed on every rank gives the same noise everywhere.
   std::mt19937 gen(o.seed);
   std::normal_distribution<double> noise(0.0, o.noise);
@@ -45,7 +47,7 @@ nlohmann::json synthetic_measurements(const Config& truth, const SyntheticOption
   doc["sigma"] = o.sigma;
   doc["comment"] = fmt::format("synthetic: breastsim forward model, mesh_size {} m, noise {} m, "
                                "seed {}",
-                               truth.number("geometry.mesh_size"), o.noise, o.seed);
+                               truth_case.geometry.mesh_size, o.noise, o.seed);
   doc["postures"] = nlohmann::json::array();
   for (const auto& p : requested_postures(truth))
   {

@@ -1,4 +1,5 @@
 #include "calibrate_request.hpp"
+#include "geometry_options.hpp"
 #include "errors.hpp"
 #include "json_file.hpp"
 #include <cstdio>
@@ -10,7 +11,7 @@ void check_calibrate_request(const CalibrateRequest& r, const Config& start)
 {
   if (r.max_evals < 1)
     throw InputError(fmt::format("--max-evals = {} must be >= 1", r.max_evals));
-  const double h = start.number("geometry.mesh_size");
+  const double h = HalfCapSpec::from(start).mesh_size;
   if (r.correction_mesh_size != 0 && !(r.correction_mesh_size > 0 && r.correction_mesh_size < h))
     throw InputError(fmt::format("--correction-mesh-size = {} must be in (0, {}) m: "
                                  "finer than the fit's geometry.mesh_size",

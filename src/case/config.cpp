@@ -239,6 +239,33 @@ Config::Config()
     _values[k.key] = k.default_value;
 }
 
+namespace
+{
+/// A relative path of a case file, relative to the case file's folder.
+std::string resolve_path(const std::string& value, const std::filesystem::path& case_file)
+{
+  if (value.empty() || std::filesystem::path(value).is_absolute())
+    return value;
+  return (case_file.parent_path() / value).lexically_normal().string();
+}
+
+/// Cross-key checks of a user mesh (geometry.mesh_file): the file exists,
+/// and the mesh is not to be refined (solver.coarse_start is not used with
+/// it: its levels are meshes of the parametric cap).
+void check_user_mesh_keys(const Config& c)
+{
+  const std::string& file = c.text("geometry.mesh_file");
+  if (file.empty())
+    return;
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(fmt::format("key 'geometry.mesh_file' = \"{}\": no such file", file));
+  if (c.integer("geometry.refinements") != 0)
+    throw InputError(fmt::format("key 'geometry.refinements' = {} with geometry.mesh_file: the user's "
+                                 "mesh is used as it is; set geometry.refinements = 0",
+                                 c.integer("geometry.refinements")));
+}
+} // namespace
+
 Config Config::from_file(const std::filesystem::path& path)
 {
   if (!std::filesystem::exists(path))
@@ -270,6 +297,8 @@ Config Config::from_file(const std::filesystem::path& path)
   {
     const KeyInfo& k = key_info(key);
     c._values[key] = from_toml(k, *node);
+    if (k.path)
+      c._values[key] = resolve_path(std::get<std::string>(c._values[key]), path);
   }
   c.validate();
   return c;
@@ -397,11 +426,12 @@ void Config::validate() const
                                  "by nothing: give a positive spring stiffness or set base.fixed "
                                  "= true",
                                  number("base.c")));
+  check_user_mesh_keys(*this);
   const auto size = estimate_size(R, H, h, static_cast<int>(integer("geometry.order")),
                                   static_cast<int>(integer("geometry.refinements")));
   const double limit_gb = number("solver.max_memory_gb") > 0 ? number("solver.max_memory_gb")
                                                               : 0.8 * machine_memory_bytes() / 1e9;
-  if (size.bytes > limit_gb * 1e9)
+  if (text("geometry.mesh_file").empty() && size.bytes > limit_gb * 1e9)
     throw InputError(fmt::format("key 'geometry.mesh_size' = {} m (order {}, {} refinements) is "
                                  "too fine for this machine: about {:.3g} tetrahedra needing about "
                                  "{:.3g} GB, above the limit of {:.3g} GB (solver.max_memory_gb)",

@@ -1,4 +1,5 @@
 #include "posture.hpp"
+#include "case_options.hpp"
 #include "errors.hpp"
 #include <cmath>
 #include <fmt/format.h>
@@ -28,12 +29,14 @@ std::array<double, 3> gravity_vector(double theta_deg, double g)
   const double t = theta_deg * M_PI / 180.0;
   return {0.0, -g * std::sin(t), -g * std::cos(t)};
 }
+
 std::vector<Posture> requested_postures(const Config& c)
 {
+  const CaseOptions o = CaseOptions::from(c);
   std::vector<Posture> p;
-  for (const auto& n : c.strings("postures.names"))
+  for (const auto& n : o.posture_names)
     p.push_back(named_posture(n));
-  for (double t : c.numbers("postures.theta_deg"))
+  for (double t : o.posture_angles_deg)
     p.push_back(posture_from_angle(t));
   return p;
 }

@@ -1,6 +1,7 @@
 // `breastsim calibrate MEASUREMENTS.json`: fit case parameters to measurements.
 // `breastsim measure CASE.toml`: synthetic measurements from the forward model.
 #include "calibrate_job.hpp"
+#include "case_options.hpp"
 #include "command.hpp"
 #include "log.hpp"
 #include "output.hpp"
@@ -61,7 +62,7 @@ Command add_calibrate_command(CLI::App& root)
             check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
             // Every input is read and checked before the output folder is claimed.
             const auto job = calibration::prepare_calibration(c, o->r);
-            const std::string default_out = "results/" + c.text("case.name") + "_calibrated";
+            const std::string default_out = "results/" + CaseOptions::from(c).name + "_calibrated";
             const std::vector<std::string> inputs = {o->r.data_file, o->case_file};
             std::filesystem::path checkpoint;
             if (job.keeps_checkpoint())

@@ -5,6 +5,7 @@
 // Richardson extrapolation, GCI of the finest level) or, with --mms, the
 // manufactured-solution verification (L2/H1 error orders). docs/CONVERGENCE.md.
 #include "config.hpp"
+#include "case_options.hpp"
 #include "convergence.hpp"
 #include "log.hpp"
 #include "strings.hpp"
@@ -68,7 +69,7 @@ Command add_converge_command(CLI::App& root)
             r.mms_meshes = parse_mms_meshes(o->mms_meshes);
             r.stage = o->stage == "surgery" ? ConvergeStage::surgery : ConvergeStage::preop;
             r.refine = o->refine == "red" ? ConvergeRefinement::red : ConvergeRefinement::gmsh;
-            const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-convergence",
+            const auto out = claim_output(o->out, "results/" + CaseOptions::from(c).name + "-convergence",
                                           {o->case_file});
             const ConvergeReport report = run_convergence(c, r, out, MPI_COMM_WORLD);
             const bool png = report.plotted;

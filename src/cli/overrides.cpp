@@ -1,6 +1,7 @@
 #include "overrides.hpp"
 #include "errors.hpp"
 #include "petsc.hpp"
+#include "solver_options.hpp"
 #include <fmt/format.h>
 #include <petscksp.h>
 
@@ -55,7 +56,7 @@ Config load_case(const std::string& file, const std::vector<std::string>& sets)
 
 void insert_petsc_options(const Config& c, const std::string& extra)
 {
-  const std::string opts = c.text("solver.petsc_options") + " " + extra;
+  const std::string opts = SolverOptions::from(c).petsc_options + " " + extra;
   std::string message;
   PETSC_CHECK(PetscPushErrorHandler(keep_message, &message));
   PetscErrorCode rc = PetscOptionsInsertString(nullptr, opts.c_str());

@@ -1,5 +1,6 @@
 // `breastsim simulate CASE.toml`: solve a case in each requested posture.
 #include "config.hpp"
+#include "case_options.hpp"
 #include "log.hpp"
 #include "simulate.hpp"
 #include "command.hpp"
@@ -30,7 +31,7 @@ Command add_simulate_command(CLI::App& root)
           {
             Config c = load_case(o->case_file, o->sets);
             insert_petsc_options(c, o->petsc_options);
-            const auto out = claim_output(o->out, "results/" + c.text("case.name"), {o->case_file});
+            const auto out = claim_output(o->out, "results/" + CaseOptions::from(c).name, {o->case_file});
             auto res = simulate(c, out, MPI_COMM_WORLD);
             if (log::is_root())
             {

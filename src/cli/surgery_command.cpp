@@ -1,6 +1,7 @@
 // `breastsim surgery CASE.toml`: incision, sutures, final neutral state and
 // post-operative postures.
 #include "log.hpp"
+#include "case_options.hpp"
 #include "surgery.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
@@ -30,7 +31,7 @@ Command add_surgery_command(CLI::App& root)
           {
             Config c = load_case(o->case_file, o->sets);
             insert_petsc_options(c, o->petsc_options);
-            const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-surgery",
+            const auto out = claim_output(o->out, "results/" + CaseOptions::from(c).name + "-surgery",
                                           {o->case_file});
             auto r = surgery(c, out, MPI_COMM_WORLD);
             if (log::is_root())

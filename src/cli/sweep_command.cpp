@@ -1,6 +1,7 @@
 // `breastsim sweep CASE.toml --vary a=25,30,35 --vary h=0.02,0.03`: the
 // surgery on a grid of incisions, one table.
 #include "errors.hpp"
+#include "case_options.hpp"
 #include "log.hpp"
 #include "sweep.hpp"
 #include "command.hpp"
@@ -43,7 +44,7 @@ Command add_sweep_command(CLI::App& root)
               grid.emplace_back(key, sweep_values(c, key, v.substr(eq + 1)));
             }
             check_sweep_request(c, grid);
-            const auto out = claim_output(o->out, "results/" + c.text("case.name") + "-sweep",
+            const auto out = claim_output(o->out, "results/" + CaseOptions::from(c).name + "-sweep",
                                           {o->case_file});
             auto rows = sweep(c, grid, out, MPI_COMM_WORLD);
             if (log::is_root() && spdlog::should_log(spdlog::level::debug)) // -v

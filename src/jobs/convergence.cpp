@@ -1,4 +1,5 @@
 #include "convergence.hpp"
+#include "case_options.hpp"
 #include "errors.hpp"
 #include "interrupt.hpp"
 #include "log.hpp"
@@ -98,7 +99,7 @@ namespace
 /// nodes snapped onto the cap (P2: straight midpoints, then snapped too).
 TaggedDolfinxMesh red_refined_cap(const Config& c, MPI_Comm comm)
 {
-  auto spec = cap_spec(c);
+  auto spec = HalfCapSpec::from(c);
   const int order = spec.order, levels = spec.refinements;
   spec.order = 1;
   spec.refinements = 0;
@@ -129,12 +130,13 @@ TaggedDolfinxMesh red_refined_cap(const Config& c, MPI_Comm comm)
 LevelValues solve_preop_level(const Config& c, MPI_Comm comm, std::int64_t& cells,
                               std::int64_t& dofs, ConvergeRefinement refine)
 {
+  const CaseOptions case_options = CaseOptions::from(c);
   Model model(refine == ConvergeRefinement::red ? red_refined_cap(c, comm)
                                                 : build_neutral_mesh(c, comm),
-              Constraints{true, c.flag("base.fixed")});
+              Constraints{true, case_options.fixed_base});
   apply_parameters(c, model);
-  NewtonSolver newton(model, newton_options(c));
-  ObservableProbe probe(model, {0, c.number("geometry.H"), 0});
+  NewtonSolver newton(model, NewtonOptions::from(c));
+  ObservableProbe probe(model, {0, case_options.geometry.H, 0});
   cells = model.mesh().mesh->topology().index_map(3)->size_global();
   dofs = model.num_dofs();
   LevelValues v;
@@ -149,8 +151,9 @@ LevelValues solve_preop_level(const Config& c, MPI_Comm comm, std::int64_t& cell
 LevelValues solve_surgery_level(const Config& c, MPI_Comm comm, std::int64_t& cells,
                                 std::int64_t& dofs)
 {
-  const auto cap = cap_spec(c);
-  const auto inc = incision_spec(c);
+  const auto cap = HalfCapSpec::from(c);
+  const auto inc = IncisionSpec::from(c);
+  const bool fixed_base = CaseOptions::from(c).fixed_base;
   const auto geo = meshes::incision_geometry(cap, inc);
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -163,17 +166,17 @@ LevelValues solve_surgery_level(const Config& c, MPI_Comm comm, std::int64_t& ce
                                     generated::tag("suture_bcd")});
   LevelValues v;
   {
-    Model pre(build_neutral_mesh(c, comm), Constraints{true, c.flag("base.fixed")});
+    Model pre(build_neutral_mesh(c, comm), Constraints{true, fixed_base});
     v.resected_volume = 2 * pre.volume();
   }
-  Model post(to_dolfinx(comm, cut, cap.order), Constraints{true, c.flag("base.fixed")});
+  Model post(to_dolfinx(comm, cut, cap.order), Constraints{true, fixed_base});
   apply_parameters(c, post);
   v.resected_volume -= 2 * post.volume();
   v.max_gap = close_sutures(post, c).max_gap;
   const auto nipple = ObservableProbe(post, geo.A).measure(post).nipple;
   reset_reference(post);
   post.set_parameter("closure", {0.0});
-  NewtonSolver newton(post, newton_options(c));
+  NewtonSolver newton(post, NewtonOptions::from(c));
   cells = post.mesh().mesh->topology().index_map(3)->size_global();
   dofs = post.num_dofs();
   v.o = solve_posture(post, newton, ObservableProbe(post, nipple), named_posture("standing"), c)
@@ -210,7 +213,7 @@ std::vector<ConvergenceStudy> converge_case(const Config& c0, int levels,
     throw InputError("--refine red: only with --stage preop (the surgery stage refines the "
                      "incised mesh with gmsh's splitting)");
   if (stage == ConvergeStage::surgery)
-    meshes::incision_geometry(cap_spec(c0), incision_spec(c0)); // rejects bad incisions first
+    meshes::incision_geometry(HalfCapSpec::from(c0), IncisionSpec::from(c0)); // rejects bad incisions first
   std::vector<ConvergenceStudy> out;
   for (int p : orders)
   {

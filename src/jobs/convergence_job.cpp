@@ -1,4 +1,5 @@
 #include "convergence.hpp"
+#include "case_options.hpp"
 #include "errors.hpp"
 #include "log.hpp"
 #include "output.hpp"
@@ -38,7 +39,7 @@ void run_mms(const Config& c, const ConvergeRequest& r, nlohmann::json& j, std::
 {
   for (int p : r.orders)
   {
-    auto s = mms_study(c, p, c.number("geometry.mesh_size"), r.levels, comm, r.mms_meshes);
+    auto s = mms_study(c, p, HalfCapSpec::from(c).mesh_size, r.levels, comm, r.mms_meshes);
     j["mms"].push_back(to_json(s));
     table += mms_table(s);
   }
@@ -59,8 +60,9 @@ void run_case(const Config& c, const ConvergeRequest& r, nlohmann::json& j, std:
 ConvergeReport run_convergence(const Config& c, const ConvergeRequest& r, const OutputTarget& out,
                                MPI_Comm comm)
 {
+  HalfCapSpec::from(c).require_parametric_cap("converge (its levels are meshes of the cap)");
   nlohmann::json j;
-  j["case"] = c.text("case.name");
+  j["case"] = CaseOptions::from(c).name;
   j["levels"] = r.levels;
   j["stage"] = r.mms ? "mms" : (r.stage == ConvergeStage::surgery ? "surgery" : "preop");
   ConvergeReport report;

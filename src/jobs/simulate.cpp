@@ -1,8 +1,10 @@
 #include "simulate.hpp"
+#include "case_options.hpp"
 #include "log.hpp"
 #include "model_setup.hpp"
 #include "neutral_mesh.hpp"
 #include "output.hpp"
+#include "output_options.hpp"
 #include "surface_export.hpp"
 #include "timer.hpp"
 #include "viewer.hpp"
@@ -117,13 +119,14 @@ std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& p
                                           const Config& c, const std::filesystem::path& dir,
                                           CoarseStart* coarse)
 {
-  NewtonSolver newton(model, newton_options(c));
+  NewtonSolver newton(model, NewtonOptions::from(c));
+  const OutputOptions output = OutputOptions::from(c);
   std::vector<PostureResult> out;
   for (const auto& p : requested_postures(c))
   {
     log::info("solving posture '{}' (theta = {:g} deg)", p.name, p.theta_deg);
     out.push_back(solve_posture(model, newton, probe, p, c, coarse));
-    write_fields(model, dir / ("displacement_" + p.name), c.flag("output.xdmf"), c.flag("output.vtk"));
+    write_fields(model, dir / ("displacement_" + p.name), output.xdmf, output.vtk);
     write_surface(model, p.name, p.theta_deg, dir / ("surface_" + p.name + ".json"));
   }
   return out;
@@ -132,6 +135,7 @@ std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& p
 SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm)
 {
   SimulationResult res;
+  const CaseOptions case_options = CaseOptions::from(c);
   check_picture_tools(comm); // fail before the solves, not after
   auto mesh = [&]
   {
@@ -146,11 +150,11 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
             res.quality.num_cells, mesh.degree, res.quality.min_dihedral_deg,
             res.quality.max_dihedral_deg, res.quality.min_radius_ratio, res.mesh_seconds);
 
-  Model model(mesh, Constraints{true, c.flag("base.fixed")});
+  Model model(mesh, Constraints{true, case_options.fixed_base});
   apply_parameters(c, model);
   res.dofs = model.num_dofs();
-  res.linear_solver = resolved_linear_solver(newton_options(c), res.dofs);
-  ObservableProbe probe(model, {0.0, c.number("geometry.H"), 0.0});
+  res.linear_solver = resolved_linear_solver(NewtonOptions::from(c), res.dofs);
+  ObservableProbe probe(model, {0.0, case_options.geometry.H, 0.0});
   log::info("model: {} unknowns, linear solver {}, terms on: {}", res.dofs, res.linear_solver,
             [&] {
               std::string s;
@@ -172,7 +176,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   res.postures = solve_postures(model, probe, c, dir.path(), coarse.get());
 
   nlohmann::json j;
-  j["case"] = c.text("case.name");
+  j["case"] = case_options.name;
   j["mesh"] = to_json(res.quality);
   j["mesh"]["order"] = mesh.degree;
   j["mesh"]["wall_time_s"] = res.mesh_seconds;

@@ -1,6 +1,8 @@
 #include "surgery.hpp"
+#include "case_options.hpp"
 #include "model_setup.hpp"
 #include "neutral_mesh.hpp"
+#include "output_options.hpp"
 #include "coarse_start.hpp"
 #include "breastsim_registry.hpp"
 #include "errors.hpp"
@@ -31,12 +33,6 @@ void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& fi
   f.write_meshtags(*m.facets, "/Xdmf/Domain/Grid[@Name='" + m.mesh->name + "']/Geometry");
 }
 
-meshes::IncisionSpec incision_spec(const Config& c)
-{
-  return {c.number("incision.a_deg"), c.number("incision.s"), c.number("incision.h"),
-          c.number("incision.d")};
-}
-
 double max_suture_gap(const Model& m)
 {
   const auto X = m.space()->tabulate_dof_coordinates(false);
@@ -55,18 +51,19 @@ SutureReport close_sutures(Model& model, const Config& c)
 {
   Stopwatch clock("surgery: sutures");
   SutureReport rep;
+  const bool gravity_on = model.term_on("gravity");
   model.set_term("sutures", true);
   model.set_term("gravity", false); // knitting happens in the neutral (gravity-free) state
-  NewtonSolver newton(model, newton_options(c));
+  NewtonSolver newton(model, NewtonOptions::from(c));
   // Force scale: the suture pull at the start of closure.
   model.set_parameter("closure", {1.0});
   const double f_ref = model.residual_norm("sutures");
-  LoadStepOptions opt = load_step_options(c);
+  LoadStepOptions opt = LoadStepOptions::from(c);
   opt.initial_step = std::min(opt.initial_step, 0.25);
   rep.closure = continuation(model, newton, "closure", 0.0, 1.0, opt, "suture closure", f_ref);
   double k = model.parameter("k_suture")[0];
   rep.max_gap = max_suture_gap(model);
-  const double tol = c.number("surgery.max_gap");
+  const double tol = SurgeryOptions::from(c).max_gap;
   while (rep.max_gap > tol)
   {
     if (++rep.penalty_raises > 6)
@@ -80,7 +77,7 @@ SutureReport close_sutures(Model& model, const Config& c)
     log::info("suture penalty raised to {:.3g} Pa/m: largest gap {:.4f} mm", k, 1e3 * rep.max_gap);
   }
   rep.k_final = k;
-  model.set_term("gravity", c.flag("terms.gravity"));
+  model.set_term("gravity", gravity_on); // as before the knitting
   rep.seconds = clock.seconds();
   return rep;
 }
@@ -100,8 +97,8 @@ struct SurgeryMeshes
 SurgeryMeshes mesh_surgery(const Config& c, MPI_Comm comm, SurgeryResult& r)
 {
   Stopwatch clock("surgery: meshing");
-  const auto cap = cap_spec(c);
-  const auto inc = incision_spec(c);
+  const auto cap = HalfCapSpec::from(c);
+  const auto inc = IncisionSpec::from(c);
   int rank;
   MPI_Comm_rank(comm, &rank);
   auto pre_mesh = build_neutral_mesh(c, comm);
@@ -131,27 +128,31 @@ SurgeryMeshes mesh_surgery(const Config& c, MPI_Comm comm, SurgeryResult& r)
 void incise_and_suture(Model& post, const Config& c, const std::filesystem::path& dir,
                        SurgeryResult& r)
 {
+  const OutputOptions output = OutputOptions::from(c);
   r.volume_remaining = 2 * post.volume();
   r.resected_volume = r.volume_pre - r.volume_remaining;
   log::info("surgery: resected volume {:.1f} cm^3 (full breast); closing the sutures",
             1e6 * r.resected_volume);
-  write_fields(post, dir / "incised_neutral", c.flag("output.xdmf"), false);
+  write_fields(post, dir / "incised_neutral", output.xdmf, false);
   r.suture = close_sutures(post, c);
-  write_fields(post, dir / "sutured", c.flag("output.xdmf"), c.flag("output.vtk"));
+  write_fields(post, dir / "sutured", output.xdmf, output.vtk);
   // The new nipple is the material point A (the transposed nipple).
   r.new_nipple_neutral = ObservableProbe(post, r.incision.A).measure(post).nipple;
   reset_reference(post);
   // The knitted faces now hold their sutured (new reference) positions
   // normal to their planes and still slide: gap = u . n.
   post.set_parameter("closure", {0.0});
-  write_fields(post, dir / "final_neutral", c.flag("output.xdmf"), false);
+  write_fields(post, dir / "final_neutral", output.xdmf, false);
 }
 } // namespace
 
 SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
 {
   SurgeryResult r;
-  r.incision = meshes::incision_geometry(cap_spec(c), incision_spec(c)); // rejects bad parameters first
+  const CaseOptions case_options = CaseOptions::from(c);
+  case_options.geometry.require_parametric_cap("surgery (the incision cuts the cap)");
+  // The incision first: it rejects bad parameters before any meshing.
+  r.incision = meshes::incision_geometry(case_options.geometry, IncisionSpec::from(c));
   check_picture_tools(comm);
   SurgeryMeshes bodies = mesh_surgery(c, comm, r);
   OutputDir dir(out, comm);
@@ -162,7 +163,7 @@ SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
   {
     Model res(bodies.resected, Constraints{false, false});
     r.resected_volume_mesh = 2 * res.volume();
-    if (c.flag("output.xdmf"))
+    if (OutputOptions::from(c).xdmf)
       write_mesh_xdmf(bodies.resected, dir.path() / "resected.xdmf");
   }
 
@@ -170,18 +171,18 @@ SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
   // in `simulate` (the post-operative body has no coarse counterpart).
   {
     Stopwatch clock("surgery: pre-operative postures");
-    Model pre(bodies.pre, Constraints{true, c.flag("base.fixed")});
+    Model pre(bodies.pre, Constraints{true, case_options.fixed_base});
     apply_parameters(c, pre);
     r.volume_pre = 2 * pre.volume();
     log::info("surgery: pre-operative postures");
     const auto coarse = make_coarse_start(c, pre);
-    r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, cap_spec(c).H, 0.0}), c,
+    r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, case_options.geometry.H, 0.0}), c,
                            dir.path() / "preop", coarse.get());
     r.seconds_pre = clock.seconds();
   }
 
   // 2., 3. Incision, sutures, final neutral state.
-  Model post(bodies.cut, Constraints{true, c.flag("base.fixed")});
+  Model post(bodies.cut, Constraints{true, case_options.fixed_base});
   apply_parameters(c, post);
   incise_and_suture(post, c, dir.path(), r);
 

@@ -5,6 +5,7 @@
 // postures from it.
 #include "incision.hpp"
 #include "simulate.hpp"
+#include "surgery_options.hpp"
 
 namespace breastsim
 {
@@ -32,7 +33,6 @@ struct SurgeryResult
   double seconds_mesh = 0, seconds_pre = 0, seconds_post = 0;
 };
 
-meshes::IncisionSpec incision_spec(const Config& c);
 /// Write a mesh and its facet tags (no field) as XDMF (collective).
 void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
 

@@ -119,6 +119,7 @@ std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const Out
                             MPI_Comm comm)
 {
   check_sweep_request(base, grid);
+  HalfCapSpec::from(base).require_parametric_cap("sweep (the incision cuts the cap)");
   OutputDir dir(out, comm);
   std::vector<SweepRow> rows;
   std::vector<std::size_t> idx(grid.size(), 0);

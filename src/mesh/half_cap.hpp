@@ -3,18 +3,13 @@
 // spherical cap with base radius R in the plane y = 0 and apex (nipple) at
 // (0, H, 0). Built with gmsh's OpenCASCADE kernel; split at z = 0 so that the
 // apex is a mesh vertex.
+#include "geometry_options.hpp"
 #include "tagged_mesh.hpp"
 
 namespace breastsim::meshes
 {
-struct HalfCapSpec
-{
-  double R = 0.07;          ///< base radius [m]
-  double H = 0.06;          ///< height of the cap (apex y) [m]
-  double mesh_size = 0.008; ///< target element size [m]
-  int order = 1;            ///< geometry/element order (1 or 2)
-  int refinements = 0;      ///< uniform refinements after meshing
-};
+/// R, H, mesh size, order and refinements (src/case/geometry_options.hpp).
+using HalfCapSpec = breastsim::HalfCapSpec;
 
 /// Radius of the sphere carrying the cap: Rs = (R^2 + H^2) / (2 H).
 double sphere_radius(double R, double H);

@@ -10,13 +10,8 @@ namespace breastsim::meshes
 {
 using Point = std::array<double, 3>;
 
-struct IncisionSpec
-{
-  double a_deg = 30; ///< angle of P1 with the symmetry plane [deg]
-  double s = 0.02;   ///< height of the new nipple A above the base centre [m]
-  double h = 0.02;   ///< height y_D of D above the base [m]
-  double d = 0.05;   ///< depth of C = (0, 0, -d) below the base centre [m]
-};
+/// a, s, h, d (src/case/geometry_options.hpp).
+using IncisionSpec = breastsim::IncisionSpec;
 
 /// Points and planes of an incision on the cap (R, H). Planes as n . p = c
 /// with n pointing into the remaining body.

@@ -1,22 +1,14 @@
 #include "neutral_mesh.hpp"
 #include "breastsim_registry.hpp"
+#include "user_mesh.hpp"
 
 namespace breastsim
 {
-meshes::HalfCapSpec cap_spec(const Config& c)
-{
-  meshes::HalfCapSpec s;
-  s.R = c.number("geometry.R");
-  s.H = c.number("geometry.H");
-  s.mesh_size = c.number("geometry.mesh_size");
-  s.order = static_cast<int>(c.integer("geometry.order"));
-  s.refinements = static_cast<int>(c.integer("geometry.refinements"));
-  return s;
-}
-
 TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm)
 {
-  const meshes::HalfCapSpec spec = cap_spec(c);
+  const HalfCapSpec spec = HalfCapSpec::from(c);
+  if (!spec.mesh_file.empty())
+    return load_user_mesh(spec.mesh_file, spec.order, comm, std::array<double, 3>{0.0, spec.H, 0.0});
   int rank;
   MPI_Comm_rank(comm, &rank);
   meshes::TaggedMesh m;

@@ -1,6 +1,7 @@
 #pragma once
 // The case's neutral (pre-operative) geometry: the half cap of geometry.R,
-// geometry.H at the case's mesh size, order and refinements.
+// geometry.H at the case's mesh size, order and refinements (HalfCapSpec),
+// or the user's mesh of geometry.mesh_file.
 #include "config.hpp"
 #include "half_cap.hpp"
 #include "mesh_from_gmsh.hpp"
@@ -8,8 +9,6 @@
 
 namespace breastsim
 {
-/// The half-cap geometry and mesh settings of the case.
-meshes::HalfCapSpec cap_spec(const Config& c);
 /// Mesh the neutral half cap of the case (collective; gmsh runs on rank 0).
 TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm);
 } // namespace breastsim

@@ -1,5 +1,7 @@
 #include "model_setup.hpp"
+#include "case_options.hpp"
 #include "neutral_mesh.hpp"
+#include "term_switches.hpp"
 
 namespace breastsim
 {
@@ -14,13 +16,15 @@ void apply_parameters(const Config& c, Model& model)
     else
       model.set_parameter(k.ufl_name, c.numbers(k.key));
   }
+  const TermSwitches terms = TermSwitches::from(c);
   for (const auto& t : model.term_names())
-    model.set_term(t, c.flag("terms." + t));
+    model.set_term(t, terms.is_on(t));
 }
 
 std::unique_ptr<Model> make_neutral_model(const Config& c, MPI_Comm comm)
 {
-  auto m = std::make_unique<Model>(build_neutral_mesh(c, comm), Constraints{true, c.flag("base.fixed")});
+  auto m = std::make_unique<Model>(build_neutral_mesh(c, comm),
+                                   Constraints{true, CaseOptions::from(c).fixed_base});
   apply_parameters(c, *m);
   return m;
 }

@@ -1,5 +1,6 @@
 #include "coarse_start.hpp"
 #include "errors.hpp"
+#include "geometry_options.hpp"
 #include "log.hpp"
 #include "point_location.hpp"
 #include "model_setup.hpp"
@@ -26,7 +27,7 @@ Config level_config(const Config& c, const NestedLevel& l)
   lc.set("solver.linear", std::string("auto"));
   // The levels only provide the fine start: the difference between two
   // levels' solutions is far above this tolerance.
-  lc.set("solver.rtol", c.number("solver.coarse_rtol"));
+  lc.set("solver.rtol", CoarseStartOptions::from(c).rtol);
   return lc;
 }
 
@@ -45,11 +46,12 @@ double relative_unknowns(double mesh_size, int order, int refinements)
 
 std::vector<NestedLevel> nested_ladder(const Config& c)
 {
-  if (!c.flag("solver.coarse_start"))
+  const CoarseStartOptions o = CoarseStartOptions::from(c);
+  const HalfCapSpec cap = HalfCapSpec::from(c);
+  if (!o.enabled || !cap.mesh_file.empty()) // the levels are meshes of the parametric cap
     return {};
-  const double base = relative_unknowns(c.number("solver.coarse_mesh_size"), 1, 0);
-  NestedLevel l{c.number("geometry.mesh_size"), static_cast<int>(c.integer("geometry.order")),
-                static_cast<int>(c.integer("geometry.refinements")), 0};
+  const double base = relative_unknowns(o.mesh_size, 1, 0);
+  NestedLevel l{cap.mesh_size, cap.order, cap.refinements, 0};
   l.relative_unknowns = relative_unknowns(l.mesh_size, l.order, l.refinements) / base;
   if (l.relative_unknowns < 4.0)
     return {};
@@ -58,8 +60,8 @@ std::vector<NestedLevel> nested_ladder(const Config& c)
   // wanders at the lower pole, a P1 Newton does not, and an intermediate P1
   // level made a fine P1 solve worse (docs/PERFORMANCE.md, "Figures moved
   // from code comments").
-  const std::int64_t levels = l.order >= 2 ? c.integer("solver.nested_levels") : 0;
-  for (std::int64_t k = 0; k < levels; ++k)
+  const int levels = l.order >= 2 ? o.nested_levels : 0;
+  for (int k = 0; k < levels; ++k)
   {
     // One step coarser: one uniform refinement fewer (exactly nested), or
     // twice the mesh size.
@@ -72,7 +74,7 @@ std::vector<NestedLevel> nested_ladder(const Config& c)
       break;
     ladder.push_back(l);
   }
-  ladder.push_back({c.number("solver.coarse_mesh_size"), 1, 0, 1.0});
+  ladder.push_back({o.mesh_size, 1, 0, 1.0});
   std::reverse(ladder.begin(), ladder.end());
   return ladder;
 }
@@ -150,7 +152,7 @@ std::unique_ptr<Model> neutral_cap_level(const Config& level_case)
 }
 
 CoarseStart::CoarseStart(const Config& c, const Model& fine, const LevelFactory& make_level)
-    : _ladder(nested_ladder(c)), _load_steps(load_step_options(c))
+    : _ladder(nested_ladder(c)), _load_steps(LoadStepOptions::from(c))
 {
   Stopwatch setup("coarse start: set-up");
   if (_ladder.empty())
@@ -163,7 +165,7 @@ CoarseStart::CoarseStart(const Config& c, const Model& fine, const LevelFactory&
     {
       Stopwatch model_clock("coarse start: level model");
       level.model = make_level(lc);
-      level.newton = std::make_unique<NewtonSolver>(*level.model, newton_options(lc));
+      level.newton = std::make_unique<NewtonSolver>(*level.model, NewtonOptions::from(lc));
       t_model = model_clock.seconds();
     }
     Stopwatch location("coarse start: node location");

@@ -6,14 +6,6 @@
 
 namespace breastsim
 {
-LoadStepOptions load_step_options(const Config& c)
-{
-  LoadStepOptions o;
-  o.initial_step = c.number("solver.initial_load_step");
-  o.min_step = c.number("solver.min_load_step");
-  return o;
-}
-
 void LoadPathReport::add(double value, NewtonReport r)
 {
   newton_iterations += r.iterations;

@@ -2,21 +2,12 @@
 // Continuation in a scalar model parameter (the gravity load factor, a
 // suture penalty, ...) with automatic step cut-back.
 #include "newton.hpp"
+#include "solver_options.hpp"
 #include <string>
 #include <vector>
 
 namespace breastsim
 {
-struct LoadStepOptions
-{
-  double initial_step = 1.0; ///< first increment (in parameter units / (to - from))
-  double min_step = 1.0 / 1024;
-  double growth = 2.0;       ///< step growth after an easy success
-};
-
-/// The case's solver.initial_load_step and solver.min_load_step.
-LoadStepOptions load_step_options(const Config& c);
-
 /// One Newton solve on a path: the parameter's value and the solve's report
 /// (with its iteration records).
 struct PathSolve

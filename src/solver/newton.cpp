@@ -20,22 +20,6 @@ double timed(const std::string& task, F&& f)
 }
 } // namespace
 
-NewtonOptions newton_options(const Config& c)
-{
-  NewtonOptions o;
-  o.linear = c.text("solver.linear");
-  o.amg_fine_smoother = c.text("solver.amg_fine_smoother");
-  o.amg_cycle = c.text("solver.amg_cycle");
-  o.direct_max_dofs = c.integer("solver.direct_max_dofs");
-  o.rtol = c.number("solver.rtol");
-  o.atol = c.number("solver.atol");
-  o.max_iterations = static_cast<int>(c.integer("solver.max_iterations"));
-  o.reuse_preconditioner = c.flag("solver.reuse_preconditioner");
-  o.inexact = c.flag("solver.inexact_newton");
-  o.forcing_max = c.number("solver.forcing_max");
-  return o;
-}
-
 std::string resolved_linear_solver(const NewtonOptions& o, std::int64_t dofs)
 {
   if (o.linear != "auto")

@@ -6,38 +6,12 @@
 #include "config.hpp"
 #include "model.hpp"
 #include "petsc.hpp"
+#include "solver_options.hpp"
 #include <string>
 #include <vector>
 
 namespace breastsim
 {
-struct NewtonOptions
-{
-  std::string linear = "auto";          ///< "direct", "amg" or "auto"
-  std::int64_t direct_max_dofs = 20000;  ///< "auto": direct up to this size
-  /// Smoother of the finest AMG level: "sor" (one symmetric Gauss-Seidel
-  /// sweep, Richardson) or "chebyshev" (GAMG's default, Chebyshev/Jacobi).
-  std::string amg_fine_smoother = "sor";
-  /// Multigrid cycle of the AMG preconditioner: "w" or "v".
-  std::string amg_cycle = "w";
-  double rtol = 1e-9;                   ///< residual tolerance relative to the reference norm
-  double atol = 1e-11;                  ///< absolute residual tolerance [N]
-  int max_iterations = 40;
-  int max_backtracks = 12;              ///< line search halvings
-  /// Keep the preconditioner (LU factors or AMG hierarchy) of an earlier
-  /// Jacobian while the Krylov solver converges quickly with it.
-  bool reuse_preconditioner = true;
-  int reuse_max_iterations = 12;        ///< rebuild when a reused solve needs more
-  /// Inexact Newton: solve J du = -r only to the Eisenstat-Walker forcing
-  /// tolerance eta_k (loose far from the solution, tight near it) instead of
-  /// to linear_rtol at every iteration.
-  bool inexact = true;
-  double forcing_max = 0.3;             ///< loosest linear tolerance eta_max
-};
-
-/// The case's solver.* Newton keys.
-NewtonOptions newton_options(const Config& c);
-
 /// One Newton iteration, as it ended.
 struct NewtonRecord
 {

@@ -1,4 +1,5 @@
 #include "posture_solve.hpp"
+#include "case_options.hpp"
 #include "log.hpp"
 #include "model_setup.hpp"
 #include "timer.hpp"
@@ -19,8 +20,9 @@ PostureResult solve_from(Model& model, NewtonSolver& newton, const ObservablePro
   const std::string context = fmt::format("posture '{}' (theta = {:g} deg)", posture.name, posture.theta_deg);
   // Each posture starts from the neutral state (or from the guess).
   model.displacement()->x()->set(0.0);
-  const double f_ext = set_gravity(model, gravity_vector(posture.theta_deg, c.number("gravity.g")));
-  start = solve_at_full_load(model, newton, guess, load_step_options(c), context, f_ext);
+  const double g = CaseOptions::from(c).gravity;
+  const double f_ext = set_gravity(model, gravity_vector(posture.theta_deg, g));
+  start = solve_at_full_load(model, newton, guess, LoadStepOptions::from(c), context, f_ext);
   r.path = std::move(start.path);
   r.converged_from_guess = start.converged;
   r.observables = probe.measure(model);
@@ -42,13 +44,13 @@ PostureResult solve_posture(Model& model, NewtonSolver& newton, const Observable
 {
   if (!coarse)
     return solve_posture(model, newton, probe, posture, c, Guess{});
+  const double g = CaseOptions::from(c).gravity;
   CoarseGuessReport ladder;
   Guess guess;
   guess.name = "the coarse solution";
   guess.set = [&](Model& fine, std::string& reason)
   {
-    const bool ok = coarse->solve_and_transfer(
-        fine, gravity_vector(posture.theta_deg, c.number("gravity.g")), ladder);
+    const bool ok = coarse->solve_and_transfer(fine, gravity_vector(posture.theta_deg, g), ladder);
     reason = ladder.reason;
     return ok;
   };

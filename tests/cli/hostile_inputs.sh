@@ -140,7 +140,7 @@ refuse view_unmarked "has no .breastsim-result marker" view mydata
 # sentinels are compared: the busy run itself writes into S).
 "$BIN" -q simulate "$CASE" --set geometry.mesh_size=0.003 --out busy >"$LOG/busy.out" 2>&1 &
 busy=$!
-for _ in $(seq 100); do [ -e "$W/.busy.breastsim-lock" ] && break; sleep 0.1; done
+for _ in $(seq 600); do [ -e "$W/.busy.breastsim-lock" ] && break; sleep 0.1; done
 SNAPSHOT=0 refuse second_run_locked "another breastsim run is writing there" simulate "$CASE" --out busy
 kill -TERM "$busy"; wait "$busy"; code=$?
 check sigterm_exit "SIGTERM exits 143 (got $code)" test "$code" -eq 143
@@ -149,7 +149,7 @@ check sigterm_clean "SIGTERM leaves no staging folder, lock or result" \
 
 "$BIN" -q simulate "$CASE" --set geometry.mesh_size=0.003 --out intr >"$LOG/intr.out" 2>&1 &
 intr=$!
-for _ in $(seq 200); do ls "$W" | grep -q 'intr.partial' && break; sleep 0.1; done
+for _ in $(seq 600); do ls "$W" | grep -q 'intr.partial' && break; sleep 0.1; done
 kill -INT "$intr"; wait "$intr"; code=$?
 check sigint_exit "SIGINT exits 130 (got $code)" test "$code" -eq 130
 check sigint_clean "SIGINT removed the staging folder" bash -c "! ls -a '$W' | grep -q intr"

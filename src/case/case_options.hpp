@@ -1,0 +1,27 @@
+#pragma once
+// The case section of the schema: the case's name, its neutral geometry
+// (HalfCapSpec), the base condition, gravity and the requested postures.
+#include "config.hpp"
+#include "geometry_options.hpp"
+#include <string>
+#include <vector>
+
+namespace breastsim
+{
+struct CaseOptions
+{
+  std::string name = "breast"; ///< case.name: reports, default result folder
+  HalfCapSpec geometry;        ///< geometry.*
+  bool fixed_base = false;     ///< base.fixed: clamped base instead of the spring bed
+  double gravity = 9.81;       ///< gravity.g: magnitude of gravity [m/s^2]
+  /// postures.names: named postures (standing, supine, all_fours, prone).
+  std::vector<std::string> posture_names = {"standing", "supine", "all_fours"};
+  std::vector<double> posture_angles_deg; ///< postures.theta_deg: further chest angles [deg]
+
+  bool operator==(const CaseOptions&) const = default;
+  /// Append case.name, geometry.*, base.fixed, gravity.g, postures.names,
+  /// postures.theta_deg (defaults: the initialisers above).
+  static void declare(std::vector<KeyInfo>& keys);
+  static CaseOptions from(const Config& c);
+};
+} // namespace breastsim
