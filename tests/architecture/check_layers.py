@@ -14,13 +14,13 @@ import sys
 LAYERS = {
     "src/core": "core", "src/forms": "forms", "src/case": "case", "src/mesh": "mesh",
     "src/model": "model", "src/solver": "solver", "src/io": "io", "verification": "verification",
-    "src/jobs": "jobs", "calibrate": "calibrate", "src/cli": "cli", "tests": "tests",
+    "src/jobs": "jobs", "calibrate": "calibrate", "src/app": "app", "src/cli": "cli", "tests": "tests",
 }
 USES = {
     "core": [], "forms": [], "case": ["core", "forms"], "mesh": ["case"], "model": ["mesh"],
     "solver": ["model"], "io": ["model"], "verification": ["model"],
     "jobs": ["solver", "io", "verification"], "calibrate": ["solver", "io"],
-    "cli": ["jobs", "calibrate"], "tests": ["jobs", "calibrate"],
+    "app": ["jobs", "calibrate"], "cli": ["app", "jobs", "calibrate"], "tests": ["app", "jobs", "calibrate"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 

@@ -1,0 +1,153 @@
+#include "app_server.hpp"
+#include "data_folder.hpp"
+#include "errors.hpp"
+#include "http_reply.hpp"
+#include "job_api.hpp"
+#include "plan_api.hpp"
+#include "request_pool.hpp"
+#include "static_files.hpp"
+#include <fmt/format.h>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <sys/socket.h>
+
+namespace breastsim::app
+{
+namespace
+{
+/// cpp-httplib 0.11 listens with a backlog of 5 connections; a burst of
+/// concurrent clients then sees resets. Linux lets listen() on a listening
+/// socket raise the backlog.
+class Server : public httplib::Server
+{
+public:
+  void raise_backlog(int n) { ::listen(svr_sock_, n); }
+};
+
+/// Host header values a loopback server answers (the rest: DNS rebinding).
+bool host_header_allowed(const std::string& host, int port)
+{
+  if (host.empty())
+    return true; // HTTP/1.0 clients; browsers always send it
+  const auto colon = host.rfind(':');
+  const bool has_port = colon != std::string::npos && host.back() != ']';
+  if (has_port && host.substr(colon + 1) != std::to_string(port))
+    return false;
+  const std::string name = has_port ? host.substr(0, colon) : host;
+  return name == "127.0.0.1" || name == "localhost" || name == "[::1]";
+}
+
+void add_static_routes(httplib::Server& server)
+{
+  for (const auto& url : static_urls())
+    server.Get(url, [](const httplib::Request& req, httplib::Response& res) {
+      const auto f = static_file(req.path);
+      std::ifstream in(f->file, std::ios::binary);
+      if (!in)
+        return reply_error(res, 404, "the page's file " + f->file.filename().string() + " is missing");
+      std::ostringstream s;
+      s << in.rdbuf();
+      res.set_content(s.str(), f->mime.c_str());
+    });
+}
+
+void add_plan_routes(httplib::Server& server)
+{
+  server.Get("/api/keys", [](const httplib::Request&, httplib::Response& res) {
+    reply_json(res, 200, keys_document());
+  });
+  server.Post("/api/validate", [](const httplib::Request& req, httplib::Response& res) {
+    with_json_body(req, res, validate_overrides);
+  });
+  server.Post("/api/incision/check", [](const httplib::Request& req, httplib::Response& res) {
+    with_json_body(req, res, check_incision);
+  });
+  server.Post("/api/measurements/check", [](const httplib::Request& req, httplib::Response& res) {
+    with_json_body(req, res, check_measurements);
+  });
+}
+
+/// Limits, headers and the handlers of errors and exceptions.
+void configure(httplib::Server& server, const ServeOptions& o, const int& port)
+{
+  const int threads = o.http_threads;
+  server.new_task_queue = [threads] { return new RequestPool(threads, 256); };
+  server.set_payload_max_length(o.max_body);
+  server.set_read_timeout(5, 0);
+  server.set_write_timeout(5, 0);
+  server.set_keep_alive_max_count(20);
+  server.set_keep_alive_timeout(2);
+  server.set_default_headers({{"X-Content-Type-Options", "nosniff"},
+                              {"X-Frame-Options", "DENY"},
+                              {"Cache-Control", "no-store"}});
+  const bool loopback = !o.host_given || is_loopback(o.host);
+  server.set_pre_routing_handler([loopback, &port](const httplib::Request& req, httplib::Response& res) {
+    if (loopback && !host_header_allowed(req.get_header_value("Host"), port))
+    {
+      reply_error(res, 403, "this server answers only requests addressed to 127.0.0.1 or localhost");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // Every POST is JSON: a cross-site form (text/plain, no preflight) cannot post.
+    if (req.method == "POST" && req.get_header_value("Content-Type").rfind("application/json", 0) != 0)
+    {
+      reply_error(res, 415, "send the request body as Content-Type: application/json");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+  server.set_error_handler(httplib::Server::HandlerWithResponse(
+      [](const httplib::Request&, httplib::Response& res) {
+    if (res.body.empty())
+      reply_error(res, res.status, res.status == 413 ? "the request body is too large"
+                                   : res.status == 404 ? "not found"
+                                                       : "request refused (HTTP " + std::to_string(res.status) + ")");
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {
+    try
+    {
+      std::rethrow_exception(ep);
+    }
+    catch (const InputError& e)
+    {
+      reply_error(res, 400, e.what());
+    }
+    catch (const std::exception& e)
+    {
+      reply_error(res, 500, std::string("internal error: ") + e.what());
+    }
+    catch (...)
+    {
+      reply_error(res, 500, "internal error");
+    }
+  });
+}
+} // namespace
+
+int serve(const ServeOptions& o)
+{
+  check_serve_options(o);
+  const auto data = claim_data_folder(o.data);
+  JobStore store(data);
+  Server server;
+  int port = o.port;
+  configure(server, o, port);
+  const bool bound = o.port == 0 ? (port = server.bind_to_any_port(o.host)) > 0
+                                 : server.bind_to_port(o.host, o.port);
+  if (!bound)
+    throw InputError(fmt::format("--host {} --port {}: cannot listen there (in use, or not an address "
+                                 "of this machine)", o.host, o.port));
+  server.raise_backlog(512);
+  JobQueue queue(store, o.program, o.workers, o.max_queued);
+  add_static_routes(server);
+  add_plan_routes(server);
+  add_job_routes(server, store, queue);
+  const std::string shown = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
+  std::cout << fmt::format("breastsim serve: listening on http://{}:{}/ (data {}, {} worker{})", shown,
+                           port, data.string(), o.workers, o.workers == 1 ? "" : "s")
+            << std::endl;
+  server.listen_after_bind();
+  return 0;
+}
+} // namespace breastsim::app

@@ -1,0 +1,76 @@
+#include "job_request.hpp"
+#include "case_request.hpp"
+#include "errors.hpp"
+#include "fit_parameters.hpp"
+#include "measurements.hpp"
+#include "plan_api.hpp"
+#include <set>
+
+namespace breastsim::app
+{
+namespace
+{
+void check_fields(const nlohmann::json& body, const std::set<std::string>& allowed, const std::string& kind)
+{
+  std::string names;
+  for (const auto& a : allowed)
+    names += (names.empty() ? "" : ", ") + a;
+  for (const auto& [k, _] : body.items())
+    if (!allowed.count(k))
+      throw InputError("field '" + k + "' is not allowed in a " + kind + " job request (allowed: " + names + ")");
+}
+
+void check_calibration(nlohmann::json& request)
+{
+  const Config start = case_from_overrides(request["overrides"]);
+  if (!request.contains("measurements"))
+    throw InputError("field 'measurements' is missing: the measurement document to fit");
+  calibration::parse_measurements(request["measurements"], "measurements");
+  if (!request.contains("fit"))
+    request["fit"] = calibration::CalibrateRequest{}.fit;
+  if (!request["fit"].is_string())
+    throw InputError("fit = " + request["fit"].dump().substr(0, 40) + ": expected names such as \"mu,c\"");
+  calibration::parse_fit(request["fit"], start);
+  if (!request.contains("max_evals"))
+    request["max_evals"] = calibration::CalibrateRequest{}.max_evals;
+  const auto& m = request["max_evals"];
+  if (!m.is_number_integer() || m.get<long>() < 1 || m.get<long>() > 5000)
+    throw InputError("max_evals = " + m.dump().substr(0, 40) + " is out of range: allowed [1, 5000]");
+  calibration::check_calibrate_request(calibrate_request(request, ""), start);
+}
+} // namespace
+
+nlohmann::json checked_job_request(const nlohmann::json& body)
+{
+  if (!body.is_object())
+    throw InputError("the job request must be a JSON object {\"kind\": ..., \"overrides\": {...}}");
+  const auto kind = body.value("kind", nlohmann::json());
+  if (kind != "simulate" && kind != "surgery" && kind != "calibrate")
+    throw InputError("kind = " + kind.dump().substr(0, 40) + ": allowed simulate, surgery, calibrate");
+  nlohmann::json request = body;
+  if (!request.contains("overrides"))
+    request["overrides"] = nlohmann::json::object();
+  if (kind == "calibrate")
+  {
+    check_fields(body, {"kind", "overrides", "measurements", "fit", "max_evals"}, "calibrate");
+    check_calibration(request);
+    return request;
+  }
+  check_fields(body, {"kind", "overrides"}, kind);
+  if (kind == "surgery")
+    incision_document(request["overrides"]); // an impossible incision is refused before any job
+  else
+    case_from_overrides(request["overrides"]);
+  return request;
+}
+
+calibration::CalibrateRequest calibrate_request(const nlohmann::json& request,
+                                                const std::filesystem::path& data_file)
+{
+  calibration::CalibrateRequest r;
+  r.data_file = data_file.string();
+  r.fit = request.at("fit").get<std::string>();
+  r.max_evals = request.at("max_evals").get<int>();
+  return r;
+}
+} // namespace breastsim::app

@@ -1,0 +1,121 @@
+#include "job_runner.hpp"
+#include "calibrate_job.hpp"
+#include "case_request.hpp"
+#include "data_folder.hpp"
+#include "errors.hpp"
+#include "job_id.hpp"
+#include "job_request.hpp"
+#include "simulate.hpp"
+#include "surgery.hpp"
+#include <csignal>
+#include <fstream>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/spdlog.h>
+#include <sys/prctl.h>
+#include <unistd.h>
+
+namespace breastsim::app
+{
+namespace fs = std::filesystem;
+namespace
+{
+void write_outcome(const fs::path& folder, const nlohmann::json& outcome)
+{
+  std::ofstream f(folder / "outcome.json.tmp", std::ios::trunc);
+  f << outcome.dump(2) << "\n";
+  f.close();
+  fs::rename(folder / "outcome.json.tmp", folder / "outcome.json");
+}
+
+/// The library's log lines (info and above) into log.txt, flushed at once.
+void log_into(const fs::path& file)
+{
+  auto logger = std::make_shared<spdlog::logger>(
+      "job", std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string()));
+  logger->set_pattern("[%H:%M:%S] %v");
+  logger->flush_on(spdlog::level::info);
+  spdlog::set_default_logger(logger);
+  spdlog::set_level(spdlog::level::info);
+}
+
+/// A calibration: the measurements into the job's own measurements.json,
+/// then the library's calibrate job with its checkpoint in the job folder.
+void calibrate(const fs::path& folder, const nlohmann::json& request, const Config& c, OutputRules rules)
+{
+  const fs::path data = folder / "measurements.json";
+  {
+    std::ofstream f(data, std::ios::trunc);
+    f << request.at("measurements").dump(2) << "\n";
+  }
+  const auto r = calibrate_request(request, data);
+  calibration::check_calibrate_request(r, c);
+  const auto job = calibration::prepare_calibration(c, r);
+  rules.inputs.push_back(data);
+  const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
+  calibration::run_calibration(job, target, folder / "checkpoint.json", MPI_COMM_WORLD);
+}
+
+void run(const fs::path& folder)
+{
+  std::ifstream f(folder / "request.json");
+  const auto request = nlohmann::json::parse(f);
+  const Config c = case_from_overrides(request.at("overrides"));
+  OutputRules rules;
+  rules.inputs = {folder / "request.json"};
+  const std::string kind = request.at("kind");
+  if (kind == "calibrate")
+    return calibrate(folder, request, c, rules);
+  const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
+  if (kind == "surgery")
+    surgery(c, target, MPI_COMM_WORLD);
+  else if (kind == "simulate")
+    simulate(c, target, MPI_COMM_WORLD);
+  else
+    throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate");
+}
+} // namespace
+
+/// Only a job folder of a server's data folder: <data>/jobs/<id>/ with the
+/// data folder's marker and the server's job.json and request.json.
+void check_job_folder(const fs::path& folder)
+{
+  const fs::path data = folder.parent_path().parent_path();
+  if (!is_job_id(folder.filename().string()) || folder.parent_path().filename() != "jobs" ||
+      !fs::exists(data / data_marker) || !fs::exists(folder / "job.json") ||
+      !fs::exists(folder / "request.json"))
+    throw InputError("--run-job " + folder.string() + ": not a job folder of breastsim serve "
+                     "(<data>/jobs/<id>/ with job.json and request.json)");
+}
+
+int run_job(const fs::path& given)
+{
+  const fs::path folder = normalise_path(given.string(), "--run-job");
+  check_job_folder(folder); // before anything is written
+  const pid_t server = getppid();
+  prctl(PR_SET_PDEATHSIG, SIGTERM); // the server's end ends this job
+  if (getppid() != server)
+    return 1;
+  log_into(folder / "log.txt");
+  try
+  {
+    run(folder);
+    write_outcome(folder, {{"ok", true}});
+    return 0;
+  }
+  catch (const InputError& e)
+  {
+    write_outcome(folder, {{"ok", false}, {"error_kind", "input"}, {"error", e.what()}});
+    return 2;
+  }
+  catch (const SolveError& e)
+  {
+    write_outcome(folder, {{"ok", false}, {"error_kind", "solve"}, {"error", e.what()}});
+    return 3;
+  }
+  catch (const std::exception& e)
+  {
+    write_outcome(folder, {{"ok", false}, {"error_kind", "error"}, {"error", e.what()}});
+    return 1;
+  }
+}
+} // namespace breastsim::app

@@ -1,0 +1,165 @@
+#include "result_summary.hpp"
+#include "fit_parameters.hpp"
+#include "output_target.hpp"
+#include <array>
+#include <cmath>
+#include <fstream>
+
+namespace breastsim::app
+{
+namespace fs = std::filesystem;
+namespace
+{
+nlohmann::json read_json(const fs::path& file)
+{
+  std::ifstream f(file);
+  return nlohmann::json::parse(f);
+}
+
+/// One posture's observables in mm, with the nipple's distance to the base.
+nlohmann::json posture_view(const nlohmann::json& p, const fs::path& surface)
+{
+  const auto nipple = p.at("nipple_m").get<std::array<double, 3>>();
+  nlohmann::json v = {{"nipple_mm", {1e3 * nipple[0], 1e3 * nipple[1], 1e3 * nipple[2]}},
+                      {"nipple_to_base_mm", 1e3 * nipple[1]},
+                      {"projection_mm", 1e3 * p.at("projection_m").get<double>()},
+                      {"z_min_mm", 1e3 * p.at("z_min_m").get<double>()},
+                      {"z_max_mm", 1e3 * p.at("z_max_m").get<double>()},
+                      {"volume_cm3", 1e6 * p.at("volume_m3").get<double>()}};
+  if (fs::exists(surface))
+  {
+    const auto pole = pole_volumes(read_json(surface), nipple[2]);
+    v["lower_pole_share"] = pole.total > 0 ? pole.lower / pole.total : 0.0;
+    v["volume_front_cm3"] = 2e6 * pole.total; // full breast, in front of the chest wall y = 0
+  }
+  return v;
+}
+
+nlohmann::json ideals()
+{
+  return {{"nipple_to_base_mm", 1e3 * ideal_nipple_to_base}, {"lower_pole_share", ideal_lower_pole_share}};
+}
+
+nlohmann::json summarize_surgery(const Config& c, const fs::path& dir, const nlohmann::json& s)
+{
+  const double resected = s.at("resected_volume_m3").get<double>();
+  const double rho = c.number(calibration::fit_alias("rho").key); // the density's key, from the forms
+  nlohmann::json j = {{"kind", "surgery"},
+                      {"resected_volume_cm3", 1e6 * resected},
+                      {"resected_volume_mesh_cm3", 1e6 * s.at("resected_volume_mesh_m3").get<double>()},
+                      {"resected_weight_g", 1e3 * resected * rho},
+                      {"tissue_rho_kg_m3", rho},
+                      {"volume_pre_cm3", 1e6 * s.at("volume_pre_m3").get<double>()},
+                      {"volume_post_cm3", 1e6 * s.at("volume_remaining_m3").get<double>()},
+                      {"max_suture_gap_mm", 1e3 * s.at("suture").at("max_gap_m").get<double>()},
+                      {"incision", s.at("incision")},
+                      {"ideal", ideals()},
+                      {"postures", nlohmann::json::array()}};
+  const auto &pre = s.at("preop"), &post = s.at("postop");
+  for (std::size_t i = 0; i < pre.size() && i < post.size(); ++i)
+  {
+    const std::string name = pre[i].at("posture");
+    j["postures"].push_back(
+        {{"posture", name}, {"theta_deg", pre[i].at("theta_deg")},
+         {"pre", posture_view(pre[i], dir / "preop" / ("surface_" + name + ".json"))},
+         {"post", posture_view(post[i], dir / "postop" / ("surface_" + name + ".json"))}});
+  }
+  return j;
+}
+
+/// The identifiability of a fitted parameter in words.
+std::string identifiability(const nlohmann::json& p)
+{
+  const std::string flag = p.value("flag", "");
+  if (!flag.empty())
+    return flag;
+  const auto se = p.value("relative_standard_error", nlohmann::json());
+  return se.is_number() ? "identifiable: relative standard error " +
+                              std::to_string(static_cast<int>(std::lround(100 * se.get<double>()))) + " %"
+                        : "identifiable";
+}
+
+nlohmann::json summarize_calibration(const fs::path& dir)
+{
+  const auto rep = read_json(dir / "report.json");
+  nlohmann::json params = nlohmann::json::array(), fitted = nlohmann::json::object();
+  for (const auto& p : rep.at("fit"))
+  {
+    params.push_back({{"name", p.at("name")}, {"key", p.at("key")}, {"unit", p.at("unit")},
+                      {"initial", p.at("initial")}, {"fitted", p.at("fitted")},
+                      {"interval_95", p.at("interval_95")}, {"at_bound", p.value("at_bound", false)},
+                      {"identifiability", identifiability(p)}});
+    fitted[p.at("key").get<std::string>()] = p.at("fitted");
+  }
+  const auto& m = rep.at("misfit");
+  return {{"kind", "calibrate"},
+          {"parameters", params},
+          {"fitted_overrides", fitted},
+          {"chi2_before", m.at("chi2_before")},
+          {"chi2_after", m.at("chi2_after")},
+          {"measurements", m.at("measurements")},
+          {"evaluations", rep.value("evaluations", 0)},
+          {"stop_reason", rep.value("stop_reason", "")},
+          {"warnings", rep.value("warnings", nlohmann::json::array())}};
+}
+
+nlohmann::json summarize_simulation(const fs::path& dir, const nlohmann::json& s)
+{
+  nlohmann::json j = {{"kind", "simulate"}, {"ideal", ideals()}, {"postures", nlohmann::json::array()}};
+  for (const auto& p : s.at("postures"))
+  {
+    const std::string name = p.at("posture");
+    j["postures"].push_back({{"posture", name}, {"theta_deg", p.at("theta_deg")},
+                             {"pre", posture_view(p, dir / ("surface_" + name + ".json"))}});
+  }
+  return j;
+}
+} // namespace
+
+PoleVolumes pole_volumes(const nlohmann::json& surface, double z_nipple)
+{
+  const auto x = surface.at("vertices").get<std::vector<double>>();
+  const auto t = surface.at("triangles").get<std::vector<std::int64_t>>();
+  PoleVolumes v;
+  for (std::size_t k = 0; k + 2 < t.size(); k += 3)
+  {
+    const double* a = &x.at(3 * t[k]);
+    const double* b = &x.at(3 * t[k + 1]);
+    const double* c = &x.at(3 * t[k + 2]);
+    // y component of (b - a) x (c - a) / 2: the oriented area projected on y
+    const double ny = 0.5 * ((b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]));
+    const double part = (a[1] + b[1] + c[1]) / 3 * ny;
+    v.total += part;
+    if ((a[2] + b[2] + c[2]) / 3 < z_nipple)
+      v.lower += part;
+  }
+  return v;
+}
+
+nlohmann::json summarize_result(const std::string& kind, const Config& c, const fs::path& dir)
+{
+  if (kind == "calibrate")
+    return summarize_calibration(dir);
+  const auto s = read_json(dir / "summary.json");
+  return kind == "surgery" ? summarize_surgery(c, dir, s) : summarize_simulation(dir, s);
+}
+
+std::map<std::string, std::string> result_files(const fs::path& job_folder)
+{
+  std::map<std::string, std::string> files = {{"log.txt", "log.txt"}};
+  const auto marker = read_marker(job_folder / "result");
+  for (const auto& f : marker.value("files", nlohmann::json::array()))
+  {
+    const fs::path rel = f.get<std::string>();
+    const auto ext = rel.extension().string();
+    if (ext != ".json" && ext != ".toml" && ext != ".html" && ext != ".png" && ext != ".txt")
+      continue;
+    std::string name = rel.generic_string();
+    for (auto& ch : name)
+      if (ch == '/')
+        ch = '_';
+    files[name] = (fs::path("result") / rel).generic_string();
+  }
+  return files;
+}
+} // namespace breastsim::app

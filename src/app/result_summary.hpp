@@ -1,0 +1,43 @@
+#pragma once
+// What the planning app shows of a finished job, from its result folder
+// (summary.json, the skin surfaces) and its case: per posture the nipple
+// (position, distance to the base plane y = 0, the ideal ~60 mm), the
+// projection and lowest point; for surgery the resected volume and weight
+// (rho), pre and post side by side, and the lower-pole share; for a
+// calibration the fitted parameters with their 95 % intervals, their
+// identifiability in words and the misfit. And the files of the result the
+// API may serve.
+#include "config.hpp"
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace breastsim::app
+{
+/// Ideal distance of the nipple to the base (chest wall) [m], standing.
+inline constexpr double ideal_nipple_to_base = 0.06;
+/// Ideal share of the breast volume below the nipple (upper:lower 45:55).
+inline constexpr double ideal_lower_pole_share = 0.55;
+
+nlohmann::json summarize_result(const std::string& kind, const Config& c,
+                                const std::filesystem::path& result_dir);
+/// The volume between a half-breast skin surface document
+/// (surface_<posture>.json, deformed vertices) and the chest-wall plane
+/// y = 0, by the divergence theorem with F = (0, y, 0) (zero on that plane,
+/// tangential to the symmetry plane x = 0 and to the horizontal cut at the
+/// nipple), and its part below the nipple height z (triangles split by their
+/// centroid's height). The springs move the base a few mm off y = 0 (into
+/// the chest lying supine, off it at the top standing): the volume in front
+/// of the chest wall differs from the body's by up to ~5 %. Half-model
+/// volumes [m^3].
+struct PoleVolumes
+{
+  double lower = 0, total = 0;
+};
+PoleVolumes pole_volumes(const nlohmann::json& surface, double z_nipple);
+/// Files of the result folder (as listed in its marker) the API serves:
+/// public name (path with '/' -> '_') -> path relative to the job folder.
+/// JSON, TOML, HTML, PNG and text files only.
+std::map<std::string, std::string> result_files(const std::filesystem::path& job_folder);
+} // namespace breastsim::app

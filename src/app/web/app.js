@@ -1,0 +1,455 @@
+// The planning app's page: patient measurements -> plan (a, s, h, d) ->
+// surgery job -> pre/post numbers and view -> compare -> export, over the
+// JSON API of `breastsim serve` (docs/APP.md). Every value is checked by the
+// server with the library's messages; the page only adds checks as typed.
+import { View3D, POINT_COLOURS } from "/view3d.js";
+
+const $ = (s) => document.querySelector(s);
+const state = { keys: {}, job: null, incisionOk: false, measurements: null, surfaces: {} };
+const app = (window.breastsimApp = { ready: false, lastRedrawMs: null, redraws: 0, errors: [] });
+let view;
+
+async function api(method, path, body) {
+  const opts = { method, headers: {} };
+  if (body !== undefined) {
+    opts.headers["Content-Type"] = "application/json";
+    opts.body = JSON.stringify(body);
+  }
+  const r = await fetch(path, opts);
+  const text = await r.text();
+  let json = null;
+  try { json = JSON.parse(text); } catch (e) { json = { text }; }
+  return { status: r.status, json };
+}
+
+function message(el, text, good) {
+  el.textContent = text || "";
+  el.className = "message " + (text ? (good ? "good" : "bad") : "");
+}
+
+function debounce(fn, ms) {
+  let t = null;
+  return (...a) => { clearTimeout(t); t = setTimeout(() => fn(...a), ms); };
+}
+
+// ---- Breast model (case keys; lengths shown in mm) ----
+const CASE_FIELDS = [
+  ["geometry.R", "base radius R", 1e3, "mm"], ["geometry.H", "height H", 1e3, "mm"],
+  ["geometry.mesh_size", "mesh size", 1e3, "mm"], ["tissue.rho", "tissue density", 1, "kg/m³"],
+  ["tissue.mu", "tissue shear modulus", 1, "Pa"], ["skin.mu", "skin shear modulus", 1, "Pa"],
+];
+
+function numberField(parent, id, label, value, unit) {
+  const d = document.createElement("div");
+  d.className = "field";
+  d.innerHTML = `<label for="${id}">${label} [${unit}]</label><input type="number" step="any" id="${id}">`;
+  parent.appendChild(d);
+  const input = d.querySelector("input");
+  if (value !== null && value !== undefined) input.value = value;
+  return input;
+}
+
+// Range check of one case key as typed (the schema's bounds), in display units.
+function keyProblem(key, scale, text) {
+  const k = state.keys[key], v = Number(text) / scale;
+  if (text === "" || !Number.isFinite(v)) return `${key}: enter a number`;
+  const loOk = k.lo === null || (k.lo_open ? v > k.lo : v >= k.lo);
+  const hiOk = k.hi === null || (k.hi_open ? v < k.hi : v <= k.hi);
+  return loOk && hiOk ? "" : `key '${key}' = ${v} is out of range: allowed ${k.allowed} ${k.unit}`;
+}
+
+function buildCaseFields() {
+  const box = $("#case-fields");
+  for (const [key, label, scale, unit] of CASE_FIELDS) {
+    const input = numberField(box, "case-" + key.replace(".", "-"), label, +(state.keys[key].default * scale).toPrecision(6), unit);
+    input.dataset.key = key;
+    input.dataset.scale = scale;
+    input.addEventListener("input", () => {
+      const p = keyProblem(key, scale, input.value);
+      input.classList.toggle("bad", !!p);
+      message($("#case-message"), p);
+      if (!p) validateCase();
+    });
+  }
+  const posts = document.createElement("div");
+  posts.className = "field";
+  posts.innerHTML = "<label>postures</label>" + ["standing", "supine", "all_fours"].map((p) =>
+    `<label style="display:inline"><input type="checkbox" class="posture" value="${p}" checked> ${p}</label>`).join(" ");
+  box.appendChild(posts);
+  posts.addEventListener("change", () => validateCase());
+}
+
+function caseOverrides() {
+  const o = { ...(state.extraOverrides || {}) };
+  for (const input of document.querySelectorAll("#case-fields input[type=number]"))
+    o[input.dataset.key] = Number(input.value) / Number(input.dataset.scale);
+  o["postures.names"] = [...document.querySelectorAll("#case-fields .posture:checked")].map((c) => c.value);
+  for (const [key, , scale] of SLIDERS) o[key] = Number($("#slider-" + key.split(".")[1]).value) / scale;
+  return o;
+}
+
+// Show a job's case on the page (a reattached job, a plan picked for comparison).
+function applyOverrides(o) {
+  for (const input of document.querySelectorAll("#case-fields input[type=number]"))
+    if (o[input.dataset.key] !== undefined) input.value = +(o[input.dataset.key] * Number(input.dataset.scale)).toPrecision(6);
+  if (o["postures.names"])
+    for (const c of document.querySelectorAll("#case-fields .posture")) c.checked = o["postures.names"].includes(c.value);
+  updateSliderRanges();
+  for (const [key, , scale] of SLIDERS)
+    if (o[key] !== undefined) $("#slider-" + key.split(".")[1]).value = o[key] * scale;
+  showSliderValues();
+}
+
+const validateCase = debounce(async () => {
+  const r = await api("POST", "/api/validate", caseOverrides());
+  message($("#case-message"), r.status === 200 ? "" : r.json.error);
+  updateSliderRanges();
+  checkIncision();
+}, 150);
+
+// ---- Patient measurements (mm on the page, m in the document) ----
+const POSTURES = ["standing", "supine", "all_fours"];
+const MEASURED = ["projection", "nipple_y", "nipple_z", "z_min", "base_perimeter"];
+
+function buildMeasurementForm() {
+  const common = $("#measure-common");
+  numberField(common, "m-base_perimeter", "base perimeter (standing)", null, "mm");
+  numberField(common, "m-breast_height", "breast height (standing)", null, "mm");
+  numberField(common, "m-sigma", "measurement error σ", 1, "mm");
+  const body = $("#measure-postures tbody");
+  for (const p of POSTURES) {
+    const tr = document.createElement("tr");
+    tr.innerHTML = `<td>${p}</td>` + MEASURED.map((q) =>
+      `<td><input type="number" step="any" id="m-${p}-${q}" aria-label="${p} ${q} [mm]"></td>`).join("");
+    body.appendChild(tr);
+  }
+  for (const input of document.querySelectorAll("#patient input[id^=m-]"))
+    input.addEventListener("input", () => measurementTyped(input));
+  $("#measure-file").addEventListener("change", loadMeasurementFile);
+}
+
+// Checks as typed: a number of at most 1000 mm (larger is not a breast), positive
+// where a length or perimeter is meant.
+function measurementProblem(input) {
+  if (input.value === "") return "";
+  const v = Number(input.value), name = input.id.slice(2);
+  if (!Number.isFinite(v)) return `${name}: enter a number in mm`;
+  if (Math.abs(v) > 1000) return `${name} = ${v} mm is out of range: |value| <= 1000 mm`;
+  if (/perimeter|height|sigma|projection/.test(name) && !(v > 0)) return `${name} = ${v} mm must be > 0`;
+  return "";
+}
+
+function measurementTyped(input) {
+  const p = measurementProblem(input);
+  input.classList.toggle("bad", !!p);
+  message($("#measure-message"), p);
+  if (!p) checkMeasurements();
+}
+
+function measurementDocument() {
+  const mm = (id) => { const v = $("#" + id).value; return v === "" ? undefined : Number(v) / 1e3; };
+  const doc = { units: "SI", sigma: mm("m-sigma"), postures: [] };
+  for (const k of ["base_perimeter", "breast_height"]) if (mm("m-" + k) !== undefined) doc[k] = mm("m-" + k);
+  for (const p of POSTURES) {
+    const e = { name: p };
+    if (mm(`m-${p}-projection`) !== undefined) e.projection = mm(`m-${p}-projection`);
+    if (mm(`m-${p}-z_min`) !== undefined) e.z_min = mm(`m-${p}-z_min`);
+    if (mm(`m-${p}-base_perimeter`) !== undefined) e.base_perimeter = mm(`m-${p}-base_perimeter`);
+    if (mm(`m-${p}-nipple_y`) !== undefined && mm(`m-${p}-nipple_z`) !== undefined)
+      e.nipple = [0, mm(`m-${p}-nipple_y`), mm(`m-${p}-nipple_z`)];
+    if (Object.keys(e).length > 1) doc.postures.push(e);
+  }
+  return doc;
+}
+
+const checkMeasurements = debounce(async () => {
+  const doc = measurementDocument();
+  if (doc.postures.length === 0) return message($("#measure-message"), "");
+  const r = await api("POST", "/api/measurements/check", doc);
+  state.measurements = r.status === 200 ? doc : null;
+  $("#cal-run").disabled = !canRun("calibrate");
+  message($("#measure-message"), r.status === 200
+    ? `${r.json.measurements.length} measurements in ${r.json.postures.join(", ")}: accepted` : r.json.error, r.status === 200);
+}, 200);
+
+function loadMeasurementFile(ev) {
+  const file = ev.target.files[0];
+  if (!file) return;
+  file.text().then((text) => {
+    let doc;
+    try { doc = JSON.parse(text); } catch (e) { return message($("#measure-message"), `${file.name}: not JSON`); }
+    const set = (id, m) => { if (typeof m === "number") $("#" + id).value = +(1e3 * m).toPrecision(6); };
+    set("m-base_perimeter", doc.base_perimeter);
+    set("m-breast_height", doc.breast_height);
+    set("m-sigma", doc.sigma);
+    for (const e of doc.postures || []) {
+      if (!POSTURES.includes(e.name)) continue;
+      for (const q of ["projection", "z_min", "base_perimeter"]) set(`m-${e.name}-${q}`, e[q]);
+      if (Array.isArray(e.nipple)) { set(`m-${e.name}-nipple_y`, e.nipple[1]); set(`m-${e.name}-nipple_z`, e.nipple[2]); }
+    }
+    for (const input of document.querySelectorAll("#patient input[id^=m-]"))
+      input.classList.toggle("bad", !!measurementProblem(input));
+    checkMeasurements();
+  });
+}
+
+// ---- Plan: sliders for a, s, h, d; points and planes drawn as they move ----
+const SLIDERS = [["incision.a_deg", "a (angle of P1)", 1, "deg"], ["incision.s", "s (new nipple height)", 1e3, "mm"],
+                 ["incision.h", "h (height of D)", 1e3, "mm"], ["incision.d", "d (depth of C)", 1e3, "mm"]];
+
+function buildSliders() {
+  const box = $("#sliders");
+  for (const [key, label, scale, unit] of SLIDERS) {
+    const name = key.split(".")[1];
+    const row = document.createElement("div");
+    row.className = "slider";
+    row.innerHTML = `<label for="slider-${name}">${label}</label><input type="range" id="slider-${name}" step="0.5">` +
+                    `<output id="value-${name}"></output>`;
+    box.appendChild(row);
+    const input = row.querySelector("input");
+    input.value = state.keys[key].default * scale;
+    input.dataset.unit = unit;
+    input.addEventListener("input", () => { state.inputAt = performance.now(); showSliderValues(); checkIncision(); });
+  }
+  updateSliderRanges();
+  showSliderValues();
+}
+
+function updateSliderRanges() {
+  const R = Number($("#case-geometry-R").value), H = Number($("#case-geometry-H").value);
+  const ranges = { a_deg: [0.5, 89.5], s: [0, R], h: [0.5, H], d: [0, R] };
+  for (const [name, [lo, hi]] of Object.entries(ranges)) {
+    const s = $("#slider-" + name);
+    s.min = lo;
+    s.max = hi;
+  }
+}
+
+function showSliderValues() {
+  for (const [key] of SLIDERS) {
+    const name = key.split(".")[1], s = $("#slider-" + name);
+    $("#value-" + name).textContent = `${Number(s.value).toFixed(1)} ${s.dataset.unit}`;
+  }
+}
+
+let checking = false, recheck = false;
+async function checkIncision() {
+  if (checking) { recheck = true; return; }
+  checking = true;
+  const r = await api("POST", "/api/incision/check", caseOverrides());
+  state.incisionOk = r.status === 200 && r.json.ok;
+  const R = Number($("#case-geometry-R").value) / 1e3, H = Number($("#case-geometry-H").value) / 1e3;
+  if (state.incisionOk) {
+    message($("#plan-message"), "");
+    $("#points tbody").innerHTML = ["A", "B", "C", "D"].map((p) =>
+      `<tr><td style="color:#${POINT_COLOURS[p].toString(16).padStart(6, "0")}">● ${p}</td>` +
+      r.json[p].map((x) => `<td>${(1e3 * x).toFixed(1)}</td>`).join("") + "</tr>").join("");
+  } else {
+    message($("#plan-message"), "impossible: " + r.json.error);
+    $("#points tbody").innerHTML = "";
+  }
+  $("#run").disabled = !canRun("surgery");
+  if ($("#view-mode").value === "plan" && R > 0 && H > 0) {
+    view.showPlan({ R, H }, state.incisionOk ? r.json : null);
+    app.redraws += 1;
+    if (state.inputAt) app.lastRedrawMs = performance.now() - state.inputAt;
+  }
+  checking = false;
+  if (recheck) { recheck = false; checkIncision(); }
+}
+
+// ---- Jobs: a surgery or a calibration, its progress, its result ----
+// One panel per kind of job; a reload reattaches each to its job.
+const PANELS = {
+  surgery: { run: "#run", cancel: "#cancel", progress: "#progress", stage: "#stage", message: "#job-message" },
+  calibrate: { run: "#cal-run", cancel: "#cal-cancel", progress: "#cal-progress", stage: "#cal-stage",
+               message: "#cal-message" },
+};
+const jobs = { surgery: null, calibrate: null };
+
+function canRun(kind) {
+  return jobs[kind] === null && (kind === "surgery" ? state.incisionOk : state.measurements !== null);
+}
+
+async function submit(kind, body) {
+  const panel = PANELS[kind];
+  const r = await api("POST", "/api/jobs", body);
+  if (r.status !== 202) return message($(panel.message), r.json.error);
+  message($(panel.message), "");
+  attach(kind, r.json.id, true);
+}
+
+function runSurgery() {
+  submit("surgery", { kind: "surgery", overrides: caseOverrides() });
+}
+
+function runCalibration() {
+  const overrides = caseOverrides();
+  for (const k of Object.keys(overrides)) if (k.startsWith("incision.")) delete overrides[k];
+  submit("calibrate", { kind: "calibrate", overrides, measurements: state.measurements,
+                        fit: $("#cal-fit").value, max_evals: Number($("#cal-evals").value) });
+}
+
+function attach(kind, id, fromPage) {
+  jobs[kind] = id;
+  if (kind === "surgery") state.shownCase = !!fromPage;
+  localStorage.setItem("breastsim.job." + kind, id);
+  $(PANELS[kind].run).disabled = true;
+  $(PANELS[kind].cancel).disabled = false;
+  poll(kind);
+}
+
+async function poll(kind) {
+  const id = jobs[kind], panel = PANELS[kind];
+  if (!id) return;
+  const r = await api("GET", `/api/jobs/${id}`);
+  if (r.status !== 200) { localStorage.removeItem("breastsim.job." + kind); jobs[kind] = null; return; }
+  const job = r.json;
+  if (kind === "surgery" && !state.shownCase) { applyOverrides(job.overrides); state.shownCase = true; }
+  $(panel.progress).value = job.progress;
+  $(panel.stage).textContent = `${job.state}: ${job.stage}`;
+  if (job.state === "queued" || job.state === "running") return setTimeout(() => poll(kind), 400);
+  jobs[kind] = null;
+  $(panel.cancel).disabled = true;
+  $(panel.run).disabled = !canRun(kind);
+  if (job.state === "done") await (kind === "surgery" ? showResult(job) : showCalibration(job));
+  else message($(panel.message), `${job.state}: ${job.error}`);
+  if (kind === "surgery") refreshPlans();
+}
+
+function cancel(kind) {
+  if (jobs[kind]) api("POST", `/api/jobs/${jobs[kind]}/cancel`, {});
+}
+
+const g4 = (x) => (typeof x === "number" ? +x.toPrecision(4) : "–");
+
+function showCalibration(job) {
+  const s = job.summary;
+  state.fitted = s.fitted_overrides;
+  $("#cal-result").innerHTML = `<p>misfit χ² ${g4(s.chi2_before)} → <b data-key="chi2_after">${g4(s.chi2_after)}</b> ` +
+    `(${s.measurements} measurements, ${s.evaluations} evaluations: ${s.stop_reason})</p>` +
+    "<table><thead><tr><th>parameter</th><th>start</th><th>fitted</th><th>95 % interval</th><th>identifiability</th></tr></thead><tbody>" +
+    s.parameters.map((p) => `<tr><td>${p.name} [${p.unit}]</td><td>${g4(p.initial)}</td><td data-key="fitted-${p.name}">${g4(p.fitted)}</td>` +
+      `<td>${g4(p.interval_95[0])} – ${g4(p.interval_95[1])}</td><td style="text-align:left">${p.identifiability}</td></tr>`).join("") +
+    '</tbody></table><button id="cal-use">Use the fitted values</button>';
+  $("#cal-use").addEventListener("click", () => {
+    state.extraOverrides = { ...state.extraOverrides, ...state.fitted };
+    applyOverrides(state.fitted);
+    validateCase();
+  });
+}
+
+const f1 = (x) => (x === undefined || x === null ? "–" : x.toFixed(1));
+const share = (x) => (x === undefined ? "–" : (100 * x).toFixed(0) + " %");
+
+async function showResult(job) {
+  const s = job.summary;
+  state.result = job;
+  const off = (v, ideal, tol) => (Math.abs(v - ideal) <= tol ? "ideal-ok" : "ideal-off");
+  let html = `<p>Resected: <b data-key="resected_volume_cm3">${f1(s.resected_volume_cm3)}</b> cm³, ` +
+    `<b data-key="resected_weight_g">${f1(s.resected_weight_g)}</b> g (ρ = ${s.tissue_rho_kg_m3} kg/m³); ` +
+    `largest suture gap ${s.max_suture_gap_mm.toFixed(3)} mm.</p><table id="result-table"><thead><tr><th>posture</th>` +
+    "<th>nipple y,z pre</th><th>nipple y,z post</th><th>nipple→base pre</th><th>nipple→base post</th>" +
+    "<th>lowest z pre</th><th>lowest z post</th><th>lower pole pre</th><th>lower pole post</th></tr></thead><tbody>";
+  for (const p of s.postures) {
+    const a = p.pre, b = p.post;
+    html += `<tr data-posture="${p.posture}"><td>${p.posture}</td><td>${f1(a.nipple_mm[1])}, ${f1(a.nipple_mm[2])}</td>` +
+      `<td>${f1(b.nipple_mm[1])}, ${f1(b.nipple_mm[2])}</td><td>${f1(a.nipple_to_base_mm)}</td>` +
+      `<td class="${off(b.nipple_to_base_mm, s.ideal.nipple_to_base_mm, 5)}" data-key="post_nipple_to_base_mm">${f1(b.nipple_to_base_mm)}</td>` +
+      `<td>${f1(a.z_min_mm)}</td><td>${f1(b.z_min_mm)}</td><td>${share(a.lower_pole_share)}</td>` +
+      `<td class="${off(b.lower_pole_share, s.ideal.lower_pole_share, 0.05)}">${share(b.lower_pole_share)}</td></tr>`;
+  }
+  html += `</tbody></table><p class="hint">Ideals: nipple to base ≈ ${s.ideal.nipple_to_base_mm} mm (standing), ` +
+    `lower pole ≈ ${(100 * s.ideal.lower_pole_share).toFixed(0)} % of the volume in front of the chest wall (below the nipple).</p>`;
+  $("#result").innerHTML = html;
+  $("#view-posture").innerHTML = s.postures.map((p) => `<option>${p.posture}</option>`).join("");
+  $("#export-files").innerHTML = ["summary.json", "case.resolved.toml", "postop_index.html", "log.txt"]
+    .filter((f) => job.files.includes(f))
+    .map((f) => `<a href="/api/jobs/${job.id}/files/${f}" download>${f === "postop_index.html" ? "3D report" : f}</a>`)
+    .concat([`<a id="export-folder" href="/api/jobs/${job.id}/result.tar" download>result folder (.tar)</a>`]).join(" · ");
+  $("#view-mode").value = "side";
+  await showSurfaces();
+}
+
+async function surface(name) {
+  if (!state.surfaces[name]) {
+    const r = await api("GET", `/api/jobs/${state.result.id}/files/${name}`);
+    state.surfaces[name] = r.status === 200 ? r.json : null;
+  }
+  return state.surfaces[name];
+}
+
+async function showSurfaces() {
+  const mode = $("#view-mode").value;
+  $("#view-legend").textContent = { plan: "red: tissue removed; green: P1, P1'; violet: P2",
+    side: "in profile: before (skin colour, left), after (blue, right)",
+    overlay: "in profile: before (translucent), after (blue)" }[mode];
+  if (mode === "plan" || !state.result) return checkIncision();
+  const p = $("#view-posture").value;
+  view.showSurfaces(await surface(`preop_surface_${p}.json`), await surface(`postop_surface_${p}.json`), mode);
+}
+
+// ---- Compare plans, export ----
+async function refreshPlans() {
+  const r = await api("GET", "/api/jobs");
+  if (r.status !== 200) return;
+  const rows = r.json.jobs.filter((j) => j.kind === "surgery" && j.state === "done").map((j) => {
+    const o = j.overrides, s = j.summary, st = s.postures[0];
+    const v = (k, sc) => ((o[k] === undefined ? state.keys[k].default : o[k]) * sc).toFixed(1);
+    return `<tr><td><a href="#" data-job="${j.id}">${j.id.slice(0, 6)}</a></td><td>${v("incision.a_deg", 1)}</td>` +
+      `<td>${v("incision.s", 1e3)}</td><td>${v("incision.h", 1e3)}</td><td>${v("incision.d", 1e3)}</td>` +
+      `<td>${f1(s.resected_volume_cm3)}</td><td>${f1(s.resected_weight_g)}</td><td>${f1(st.post.nipple_to_base_mm)}</td>` +
+      `<td>${share(st.post.lower_pole_share)}</td></tr>`;
+  });
+  $("#plans tbody").innerHTML = rows.join("");
+  for (const a of document.querySelectorAll("#plans a[data-job]"))
+    a.addEventListener("click", async (ev) => {
+      ev.preventDefault();
+      state.surfaces = {};
+      const j = await api("GET", `/api/jobs/${a.dataset.job}`);
+      if (j.status === 200) { applyOverrides(j.json.overrides); showResult(j.json); }
+    });
+}
+
+function download(name, text, type) {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(new Blob([text], { type }));
+  a.download = name;
+  a.click();
+  setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+
+async function exportCase() {
+  const r = await api("POST", "/api/validate", caseOverrides());
+  if (r.status !== 200) return message($("#case-message"), r.json.error);
+  download("case.toml", r.json.case_toml, "application/toml");
+}
+
+async function main() {
+  window.addEventListener("error", (e) => app.errors.push(String(e.message)));
+  view = new View3D($("#view"));
+  const keys = await api("GET", "/api/keys");
+  for (const k of keys.json.keys) state.keys[k.key] = k;
+  buildCaseFields();
+  buildMeasurementForm();
+  buildSliders();
+  $("#run").addEventListener("click", runSurgery);
+  $("#cancel").addEventListener("click", () => cancel("surgery"));
+  $("#cal-run").addEventListener("click", runCalibration);
+  $("#cal-cancel").addEventListener("click", () => cancel("calibrate"));
+  $("#view-mode").addEventListener("change", showSurfaces);
+  $("#view-posture").addEventListener("change", showSurfaces);
+  $("#export-case").addEventListener("click", exportCase);
+  $("#export-measurements").addEventListener("click", () =>
+    download("measurements.json", JSON.stringify(measurementDocument(), null, 2), "application/json"));
+  await showSurfaces();
+  await refreshPlans();
+  for (const kind of ["calibrate", "surgery"]) { // a reload reattaches to the running (or finished) jobs
+    const id = localStorage.getItem("breastsim.job." + kind);
+    if (id) attach(kind, id, false);
+  }
+  $("#status").textContent = "connected";
+  app.ready = true;
+}
+
+main();

@@ -1,0 +1,176 @@
+// The 3D view of the planning app (three.js): the neutral cap with the
+// incision (tissue to be removed tinted, planes P1, P1' and P2, points A, B,
+// C, D), and the skin surfaces of a finished job, pre and post side by side
+// or overlaid. Model coordinates (x lateral, y out of the chest, z up; m)
+// are drawn in mm with three.js's y up: (x, y, z) -> (x, z, y).
+import * as THREE from "three";
+import { OrbitControls } from "/three/OrbitControls.js";
+
+const SKIN = new THREE.Color(0xe8b9a0), CUT = new THREE.Color(0xc0392b), POST = new THREE.Color(0x7fb3d5);
+export const POINT_COLOURS = { A: 0x1e8449, B: 0x2471a3, C: 0x7d3c98, D: 0xd68910 };
+
+const toScene = (p) => new THREE.Vector3(1e3 * p[0], 1e3 * p[2], 1e3 * p[1]);
+
+export class View3D {
+  constructor(container) {
+    this.container = container;
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(1);
+    container.appendChild(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0xffffff);
+    this.camera = new THREE.PerspectiveCamera(35, 1, 1, 5000);
+    this.camera.position.set(260, 90, 330);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.addEventListener("change", () => this.render());
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x887766, 0.9));
+    const sun = new THREE.DirectionalLight(0xffffff, 0.55); // from over the viewer's shoulder
+    sun.position.set(0.3, 0.6, 1);
+    this.camera.add(sun);
+    this.scene.add(this.camera);
+    this.content = new THREE.Group();
+    this.scene.add(this.content);
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+  }
+
+  resize() {
+    const w = Math.max(this.container.clientWidth, 100), h = Math.max(this.container.clientHeight, 100);
+    this.renderer.setSize(w, h);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.render();
+  }
+
+  render() {
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  clear() {
+    for (const o of [...this.content.children]) {
+      this.content.remove(o);
+      o.traverse((c) => { if (c.geometry) c.geometry.dispose(); if (c.material) c.material.dispose(); });
+    }
+  }
+
+  // The neutral cap (R, H) of the full breast; with `incision` (the answer of
+  // /api/incision/check) the removed tissue is tinted and the planes and
+  // points drawn.
+  showPlan(cap, incision) {
+    this.clear();
+    this.content.add(capMesh(cap, incision));
+    if (incision) {
+      for (const [name, p] of Object.entries({ A: incision.A, B: incision.B, C: incision.C, D: incision.D })) {
+        for (const side of p[0] === 0 ? [1] : [1, -1]) {
+          const ball = new THREE.Mesh(new THREE.SphereGeometry(2.5, 16, 12),
+                                      new THREE.MeshBasicMaterial({ color: POINT_COLOURS[name] }));
+          ball.position.copy(toScene([side * p[0], p[1], p[2]]));
+          this.content.add(ball);
+        }
+      }
+      const n1 = incision.P1.normal;
+      this.content.add(planeQuad(n1, incision.P1.offset, cap.R, 0x1e8449));
+      this.content.add(planeQuad([-n1[0], n1[1], n1[2]], incision.P1.offset, cap.R, 0x1e8449));
+      this.content.add(planeQuad(incision.P2.normal, incision.P2.offset, cap.R, 0x7d3c98));
+    }
+    this.content.add(baseRing(cap.R));
+    if (!this.framed) this.frame(new THREE.Vector3(1, 0.35, 1.25));
+    this.framed = "plan";
+    this.render();
+  }
+
+  // Aim the camera at the content from `direction` at a distance that shows all of it.
+  frame(direction) {
+    const box = new THREE.Box3().setFromObject(this.content);
+    const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
+    const distance = (0.6 * size) / Math.tan((this.camera.fov * Math.PI) / 360);
+    this.controls.target.copy(centre);
+    this.camera.position.copy(centre).addScaledVector(direction.clone().normalize(), distance);
+    this.camera.lookAt(centre);
+    this.controls.update();
+  }
+
+  // Skin surfaces (surface_<posture>.json documents), mirrored to the full
+  // breast, seen in profile: `mode` "side" (pre, then post further out of the
+// chest) or "overlay".
+  showSurfaces(pre, post, mode) {
+    this.clear();
+    const shift = mode === "side" && post ? 120 : 0;
+    if (pre) this.content.add(surfaceMesh(pre, SKIN, -shift / 2, post && mode === "overlay" ? 0.45 : 1));
+    if (post) this.content.add(surfaceMesh(post, POST, shift / 2, 1));
+    if (this.framed !== mode) this.frame(new THREE.Vector3(-1, 0.1, 0)); // in profile, pre left: projection and ptosis
+    this.framed = mode;
+    this.render();
+  }
+}
+
+function capMesh(cap, incision) {
+  const R = cap.R, H = cap.H, Rs = (R * R + H * H) / (2 * H), yc = H - Rs;
+  const amax = Math.acos((Rs - H) / Rs), nA = 40, nB = 96;
+  const pos = [], col = [], idx = [];
+  for (let i = 0; i <= nA; i++) {
+    const a = (amax * i) / nA;
+    for (let j = 0; j <= nB; j++) {
+      const b = (2 * Math.PI * j) / nB;
+      const p = [Rs * Math.sin(a) * Math.cos(b), yc + Rs * Math.cos(a), Rs * Math.sin(a) * Math.sin(b)];
+      const v = toScene(p);
+      pos.push(v.x, v.y, v.z);
+      const c = incision && removed(incision, p) ? CUT : SKIN;
+      col.push(c.r, c.g, c.b);
+    }
+  }
+  for (let i = 0; i < nA; i++)
+    for (let j = 0; j < nB; j++) {
+      const k = i * (nB + 1) + j;
+      idx.push(k, k + nB + 1, k + 1, k + 1, k + nB + 1, k + nB + 2);
+    }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute("position", new THREE.Float32BufferAttribute(pos, 3));
+  g.setAttribute("color", new THREE.Float32BufferAttribute(col, 3));
+  g.setIndex(idx);
+  g.computeVertexNormals();
+  return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide }));
+}
+
+// In the removed tissue: beyond P1 (or its mirror) or beyond P2 (n . p < offset).
+function removed(inc, p) {
+  const q = [Math.abs(p[0]), p[1], p[2]];
+  const dot = (n) => n[0] * q[0] + n[1] * q[1] + n[2] * q[2];
+  return dot(inc.P1.normal) < inc.P1.offset || dot(inc.P2.normal) < inc.P2.offset;
+}
+
+function planeQuad(n, offset, R, colour) {
+  const normal = new THREE.Vector3(n[0], n[1], n[2]).normalize();
+  const centre = normal.clone().multiplyScalar(offset);
+  const helper = Math.abs(normal.x) < 0.9 ? new THREE.Vector3(1, 0, 0) : new THREE.Vector3(0, 1, 0);
+  const u = new THREE.Vector3().crossVectors(normal, helper).normalize(), v = new THREE.Vector3().crossVectors(normal, u);
+  const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([a, b]) =>
+    toScene(centre.clone().addScaledVector(u, a * R).addScaledVector(v, b * R).toArray()));
+  const g = new THREE.BufferGeometry().setFromPoints(corners);
+  g.setIndex([0, 1, 2, 0, 2, 3]);
+  return new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: colour, transparent: true, opacity: 0.18,
+                                                          side: THREE.DoubleSide, depthWrite: false }));
+}
+
+function baseRing(R) {
+  const pts = [];
+  for (let i = 0; i <= 96; i++) pts.push(toScene([R * Math.cos((2 * Math.PI * i) / 96), 0, R * Math.sin((2 * Math.PI * i) / 96)]));
+  return new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: 0x555555 }));
+}
+
+function surfaceMesh(doc, colour, shift, opacity) {
+  const v = doc.vertices, t = doc.triangles, pos = [];
+  for (const side of [1, -1])
+    for (let i = 0; i < v.length; i += 3) {
+      const p = toScene([side * v[i], v[i + 1], v[i + 2]]);
+      pos.push(p.x, p.y, p.z + shift);
+    }
+  const n = v.length / 3, idx = [...t];
+  for (let k = 0; k < t.length; k += 3) idx.push(t[k] + n, t[k + 2] + n, t[k + 1] + n);
+  const g = new THREE.BufferGeometry();
+  g.setAttribute("position", new THREE.Float32BufferAttribute(pos, 3));
+  g.setIndex(idx);
+  g.computeVertexNormals();
+  return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: colour, side: THREE.DoubleSide,
+                                                           transparent: opacity < 1, opacity }));
+}

@@ -1,0 +1,165 @@
+// The planning app in a real headless Chromium (Debian's chromium driven by
+// playwright-core) against a running `breastsim serve`: load -> patient
+// measurements (a value out of range is flagged as typed, the example file
+// accepted) -> calibrate (the API's fit shown and used in the model) -> move
+// a slider (the plan redraws; an impossible h is shown with its reason) ->
+// run a surgery, reload while it runs (the page reattaches) -> the numbers
+// on the page equal the API's -> export the case TOML. No console errors.
+// Screenshots of each step into SHOT_DIR; first-view and slider redraw times.
+// Usage: node page_test.js URL MEASUREMENTS_JSON SHOT_DIR   (NODE_PATH: playwright-core)
+"use strict";
+const fs = require("fs");
+const os = require("os");
+const path = require("path");
+const { chromium } = require("playwright-core");
+
+const CHROMIUM = process.env.BREASTSIM_CHROMIUM || "/usr/bin/chromium";
+const [url, measurements, shots] = process.argv.slice(2);
+let passed = 0;
+
+function check(ok, what) {
+  if (!ok) throw new Error("FAILED: " + what);
+  console.log("ok: " + what);
+  passed += 1;
+}
+
+async function setSlider(page, name, value) {
+  await page.evaluate(([n, v]) => {
+    const s = document.querySelector("#slider-" + n);
+    s.value = v;
+    s.dispatchEvent(new Event("input"));
+  }, [name, value]);
+}
+
+async function redrawAfter(page, before) {
+  await page.waitForFunction((n) => window.breastsimApp.redraws > n, before, { timeout: 10000 });
+  return page.evaluate(() => window.breastsimApp.lastRedrawMs);
+}
+
+async function walk(page, errors) {
+  const t0 = Date.now();
+  await page.goto(url);
+  await page.waitForFunction(() => window.breastsimApp && window.breastsimApp.ready, null, { timeout: 30000 });
+  const firstView = Date.now() - t0;
+  check(errors.length === 0, "no console errors on load" + (errors.length ? ": " + errors : ""));
+  await page.screenshot({ path: path.join(shots, "1-plan.png") });
+
+  // Patient measurements: typed in mm, checked as typed; the example file is accepted.
+  await page.fill("#m-standing-z_min", "-78000");
+  check(await page.$eval("#m-standing-z_min", (e) => e.classList.contains("bad")), "an impossible value is flagged as typed");
+  await page.setInputFiles("#measure-file", measurements);
+  await page.waitForFunction(() => /accepted/.test(document.querySelector("#measure-message").textContent));
+  check(await page.$eval("#m-standing-z_min", (e) => Math.abs(Number(e.value) + 78.6) < 1 && !e.classList.contains("bad")),
+        "the measurements file fills the form in mm and is accepted");
+  await page.screenshot({ path: path.join(shots, "2-patient.png") });
+
+  // Coarse mesh, one posture: a quick calibration and surgery.
+  await page.fill("#case-geometry-mesh_size", "12");
+  await page.dispatchEvent("#case-geometry-mesh_size", "input");
+  for (const p of ["supine", "all_fours"]) await page.uncheck(`.posture[value=${p}]`);
+
+  // Calibrate: the fitted values and their intervals as the API gives them; used in the model.
+  await page.fill("#cal-fit", "mu,c");
+  await page.fill("#cal-evals", "12");
+  await page.waitForFunction(() => !document.querySelector("#cal-run").disabled);
+  await page.click("#cal-run");
+  await page.waitForSelector("#cal-use", { timeout: 300000 });
+  const cal = await page.evaluate(async () =>
+    (await fetch("/api/jobs/" + localStorage.getItem("breastsim.job.calibrate"))).json());
+  const mu = cal.summary.parameters.find((p) => p.name === "mu");
+  const shownMu = await page.textContent('[data-key="fitted-mu"]');
+  check(shownMu === String(+mu.fitted.toPrecision(4)) && /identifiab|determined|correlated/.test(await page.textContent("#cal-result")),
+        `calibration: the page shows the API's fit (mu = ${shownMu} Pa) with intervals and identifiability`);
+  await page.$eval("#calibrate", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, "2-calibrated.png") });
+  await page.click("#cal-use");
+  check(Math.abs(Number(await page.inputValue("#case-tissue-mu")) / mu.fitted - 1) < 1e-5,
+        "the fitted values go into the breast model");
+
+  // Plan: sliders redraw the incision; an impossible h is refused with its reason.
+  const times = [];
+  for (const a of [25, 35, 40, 30]) {
+    const n = await page.evaluate(() => window.breastsimApp.redraws);
+    await setSlider(page, "a_deg", a);
+    times.push(await redrawAfter(page, n));
+  }
+  const n = await page.evaluate(() => window.breastsimApp.redraws);
+  await page.evaluate(() => { const s = document.querySelector("#slider-h"); s.max = 200; });
+  await setSlider(page, "h", 100);
+  await redrawAfter(page, n);
+  const why = await page.textContent("#plan-message");
+  check(/impossible: .*incision.h/.test(why) && await page.$eval("#run", (b) => b.disabled),
+        `an impossible h is shown with its reason and blocks the run (${why})`);
+  await page.screenshot({ path: path.join(shots, "3-impossible.png") });
+  const m = await page.evaluate(() => window.breastsimApp.redraws);
+  await setSlider(page, "h", 25);
+  await redrawAfter(page, m);
+  await page.screenshot({ path: path.join(shots, "3-plan-slider.png") });
+
+  // Simulate: the page's numbers are the API's.
+  await page.click("#run");
+  await page.waitForFunction(() => /running/.test(document.querySelector("#stage").textContent), null,
+                             { timeout: 60000 });
+  await page.screenshot({ path: path.join(shots, "4-running.png") });
+  await page.reload(); // while the job runs: the page reattaches and follows it to its end
+  await page.waitForFunction(() => window.breastsimApp && window.breastsimApp.ready, null, { timeout: 30000 });
+  const reattached = await page.textContent("#stage");
+  await page.waitForSelector("#result-table", { timeout: 300000 });
+  check(/running|done/.test(reattached), `a reload during the run reattaches to the job (${reattached})`);
+  const id = await page.evaluate(() => localStorage.getItem("breastsim.job.surgery"));
+  const job = await page.evaluate(async (id) => (await fetch("/api/jobs/" + id)).json(), id);
+  const shown = await page.evaluate(() => ({
+    v: document.querySelector('[data-key="resected_volume_cm3"]').textContent,
+    g: document.querySelector('[data-key="resected_weight_g"]').textContent,
+    nb: document.querySelector('[data-key="post_nipple_to_base_mm"]').textContent }));
+  const s = job.summary;
+  check(shown.v === s.resected_volume_cm3.toFixed(1) && shown.g === s.resected_weight_g.toFixed(1) &&
+        shown.nb === s.postures[0].post.nipple_to_base_mm.toFixed(1),
+        `the page shows the API's numbers (${shown.v} cm³, ${shown.g} g, nipple to base ${shown.nb} mm)`);
+  await page.$eval("#simulate", (e) => e.scrollIntoView());
+  await page.waitForTimeout(500);
+  await page.screenshot({ path: path.join(shots, "4-result-side.png") });
+  await page.selectOption("#view-mode", "overlay");
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: path.join(shots, "4-result-overlay.png") });
+
+  // Reload after the end: the page shows the job's result and its case again.
+  await page.reload();
+  await page.waitForSelector("#result-table", { timeout: 30000 });
+  check(await page.inputValue("#case-geometry-mesh_size") === "12", "a reload shows the finished job with its case");
+
+  // Export the case file.
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click("#export-case")]);
+  const toml = fs.readFileSync(await download.path(), "utf8");
+  if (process.env.BREASTSIM_DEBUG) console.log(toml);
+  const [tar] = await Promise.all([page.waitForEvent("download"), page.click("#export-folder")]);
+  check(fs.statSync(await tar.path()).size > 10240, "the result folder downloads as one archive");
+  check(/a_deg = 30(\.0)?\s/.test(toml) && new RegExp(`mu = ${mu.fitted.toPrecision(6).slice(0, 5)}`).test(toml) && /mesh_size = 0.012\s/.test(toml) && /names = \[ 'standing' \]/.test(toml), "the exported case file holds the plan");
+  check(errors.length === 0, "no console errors after the walk" + (errors.length ? ": " + errors : ""));
+  console.log(`first view ${firstView} ms; slider redraw ${Math.min(...times).toFixed(0)}-${Math.max(...times).toFixed(0)} ms`);
+  fs.writeFileSync(path.join(shots, "timings.json"), JSON.stringify({ first_view_ms: firstView, slider_redraw_ms: times }));
+}
+
+async function main() {
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), "breastsim-chromium-"));
+  const browser = await chromium.launchPersistentContext(profile, {
+    executablePath: CHROMIUM, headless: true, acceptDownloads: true,
+    viewport: { width: 1280, height: 800 },
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+           "--disable-background-networking", "--disable-component-update", "--disable-sync",
+           "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
+  });
+  try {
+    const page = await browser.newPage();
+    const errors = [];
+    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+    page.on("pageerror", (e) => errors.push(String(e)));
+    await walk(page, errors);
+  } finally {
+    await browser.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+  }
+  console.log(`${passed} passed, 0 failed`);
+}
+
+main().catch((e) => { console.error(e.message || e); process.exit(1); });

@@ -1,0 +1,219 @@
+"""Checks of `breastsim serve` over HTTP, one phase per call (tests/app/server.sh).
+
+Usage: server_checks.py PORT PHASE [ARGS...]
+  refusals                    malformed, unknown, out-of-range, oversized, traversal, CORS, Host
+  plan                        keys, validate, incision check, measurements check
+  surgery OVERRIDES_JSON OUT  run a surgery job; write its record and summary.json to OUT (JSON)
+  calibrate MEASUREMENTS OUT  refused fit names; a small calibration; its record and report to OUT
+  failures                    a failing solve; starts a job and prints its id (to be killed)
+  crashed ID FOLDER           the killed job is failed, its staging folder gone, the server up
+  cancel                      cancel a queued and a running job; nothing of them is left
+  parallel                    (--workers 2) two jobs run at once; a running job's log is served
+  persisted RECORD_JSON       the job of RECORD_JSON is still there with the same summary
+"""
+import io
+import json
+import os
+import tarfile
+import sys
+import time
+
+from api_client import Api
+
+
+def check(cond, what):
+    if not cond:
+        raise AssertionError(what)
+    print("ok:", what)
+
+
+def refusals(api):
+    s, r = api.json("POST", "/api/validate", {"incision.a_deg": 95})
+    check(s == 400 and r["error"] == "key 'incision.a_deg' = 95 is out of range: allowed (0, 90) deg",
+          f"out-of-range value -> 400 with the CLI's message ({r})")
+    s, r = api.json("POST", "/api/validate", {"no.such_key": 1})
+    check(s == 400 and "unknown key 'no.such_key'" in r["error"], f"unknown key -> 400 ({r})")
+    s, r = api.json("POST", "/api/validate", {"geometry.order": "two"})
+    check(s == 400 and "geometry.order" in r["error"], f"wrong type -> 400 naming the key ({r})")
+    s, r = api.json("POST", "/api/validate", {"solver.petsc_options": "-log_view :/tmp/x"})
+    check(s == 400 and "solver.petsc_options" in r["error"], "PETSc options (they can name files) refused")
+    s, r = api.json("POST", "/api/jobs", {"kind": "rm -rf", "overrides": {}})
+    check(s == 400 and "kind" in r["error"], f"unknown job kind -> 400 ({r})")
+    s, r = api.json("POST", "/api/jobs", {"kind": "surgery", "overrides": {"incision.s": 0.5}})
+    check(s == 400 and "incision.s" in r["error"], f"impossible incision refused before any job ({r})")
+    for body in ['{"a": ', "[1, 2", "\x00\x01", "{" * 5000 + "}" * 5000, '"just text"', "null"]:
+        s, _, data = api.raw("POST", "/api/validate", body, {"Content-Type": "application/json"})
+        check(s == 400 and b'"error"' in data, f"malformed body {body[:12]!r}... -> 400 ({s})")
+    s, _, _ = api.raw("POST", "/api/validate", "{}", {"Content-Type": "text/plain"})
+    check(s == 415, f"a body that is not application/json -> 415 (cross-site forms) ({s})")
+    big = '{"case.name": "' + "x" * (2 << 20) + '"}'
+    s, _, _ = api.raw("POST", "/api/validate", big, {"Content-Type": "application/json"})
+    check(s == 413, f"oversized body -> 413 ({s})")
+    for path in ["/api/jobs/../../etc/passwd", "/api/jobs/%2e%2e/%2e%2e/etc/passwd",
+                 "/api/jobs/%2e%2e%2f%2e%2e%2fetc%2fpasswd", "/../../../../etc/passwd",
+                 "/three/../../../../../etc/passwd", "/three/%2e%2e/%2e%2e/package.json",
+                 "/api/jobs/0123456789abcdef/files/..%2f..%2f..%2fetc%2fpasswd",
+                 "/api/jobs/0123456789abcdef/files/%2e%2e", "/api/jobs/0123456789ABCDEF",
+                 "/api/jobs/0123456789abcdef0/files/job.json", "//etc/passwd", "/app.js/../../.."]:
+        s, _, data = api.raw("GET", path)
+        check(s in (400, 404) and b"root:" not in data, f"traversal {path} -> {s}")
+    s, h, _ = api.raw("GET", "/api/keys", headers={"Origin": "http://evil.example"})
+    check(s == 200 and not any(k.lower().startswith("access-control") for k in h),
+          "no Access-Control-* header (CORS closed)")
+    s, h, _ = api.raw("OPTIONS", "/api/jobs", headers={"Origin": "http://evil.example",
+                                                       "Access-Control-Request-Method": "POST"})
+    check(not any(k.lower().startswith("access-control") for k in h), f"preflight not granted ({s})")
+    s, _, _ = api.raw("GET", "/api/keys", headers={"Host": "evil.example:80"})
+    check(s == 403, f"a Host header of another machine (DNS rebinding) -> 403 ({s})")
+
+
+def plan(api):
+    s, r = api.json("GET", "/api/keys")
+    keys = {k["key"]: k for k in r["keys"]}
+    check(s == 200 and keys["incision.a_deg"]["allowed"] == "(0, 90)", "keys: schema with the ranges")
+    s, r = api.json("POST", "/api/validate", {"incision.a_deg": 35, "geometry.mesh_size": 0.01})
+    check(s == 200 and r["ok"] and "a_deg = 35" in r["case_toml"], "validate: resolved case TOML")
+    s, r = api.json("POST", "/api/incision/check", {"incision.a_deg": 30, "incision.s": 0.02})
+    check(s == 200 and r["C"] == [0.0, 0.0, -0.045] and abs(r["A"][2] - 0.02) < 1e-12,
+          f"incision points A..D and planes ({r['A']}, {r['C']})")
+    s, r = api.json("POST", "/api/incision/check", {"incision.h": 0.3})
+    check(s == 200 and not r["ok"] and "incision.h" in r["error"], f"impossible incision: the reason names h ({r})")
+    s, r = api.json("POST", "/api/incision/check", {"incision.a_deg": 90})
+    check(s == 400 and "incision.a_deg" in r["error"], f"a value outside the key's range: 400 ({r})")
+    doc = json.load(open(sys.argv[3])) if len(sys.argv) > 3 else None
+    if doc:
+        s, r = api.json("POST", "/api/measurements/check", doc)
+        check(s == 200 and "standing" in r["postures"], "measurements: the example is accepted")
+        doc["postures"][0]["z_min"] = -78.0
+        s, r = api.json("POST", "/api/measurements/check", doc)
+        check(s == 400 and "z_min" in r["error"] and "mm" in r["error"], f"measurements in mm refused ({r})")
+
+
+def surgery(api, overrides, out):
+    s, r = api.json("POST", "/api/jobs", {"kind": "surgery", "overrides": json.loads(overrides)})
+    check(s == 202, f"job accepted ({s} {r})")
+    rec = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
+    check(rec["state"] == "done", f"surgery job done ({rec['state']}: {rec['error']})")
+    s, _, data = api.raw("GET", f"/api/jobs/{r['id']}/files/summary.json")
+    check(s == 200, "summary.json served from the job's whitelist")
+    s, h, tar = api.raw("GET", f"/api/jobs/{r['id']}/result.tar")
+    names = tarfile.open(fileobj=io.BytesIO(tar)).getnames()
+    check(s == 200 and f"breastsim-{r['id']}/summary.json" in names and
+          all(n.startswith(f"breastsim-{r['id']}/") and ".." not in n for n in names),
+          f"the result folder as one archive ({len(names)} files, {len(tar) >> 10} KiB)")
+    json.dump({"record": rec, "summary": json.loads(data)}, open(out, "w"))
+
+
+def calibrate(api, measurements, out):
+    doc = json.load(open(measurements))
+    base = {"kind": "calibrate", "overrides": {"geometry.mesh_size": 0.012}, "measurements": doc}
+    s, r = api.json("POST", "/api/jobs", {**base, "fit": "mu,zz"})
+    check(s == 400 and "unknown parameter 'zz'" in r["error"], f"unknown fit name -> 400 ({r})")
+    s, r = api.json("POST", "/api/jobs", {**base, "fit": "mu,rho"})
+    check(s == 400 and "rho" in r["error"], f"an unidentifiable combination is refused ({r['error'][:60]}...)")
+    s, r = api.json("POST", "/api/jobs", {**base, "fit": "mu,c", "max_evals": 12})
+    rec = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
+    check(rec["state"] == "done", f"calibration job done ({rec['state']}: {rec['error']})")
+    p = rec["summary"]["parameters"]
+    check([q["name"] for q in p] == ["mu", "c"] and all(q["interval_95"][0] < q["fitted"] < q["interval_95"][1] for q in p)
+          and all(q["identifiability"] for q in p), "fitted parameters with 95 % intervals and identifiability in words")
+    s, _, data = api.raw("GET", f"/api/jobs/{r['id']}/files/report.json")
+    check(s == 200, "report.json served")
+    json.dump({"record": rec, "report": json.loads(data)}, open(out, "w"))
+
+
+def failures(api):
+    hard = {"geometry.mesh_size": 0.012, "postures.names": ["standing"], "solver.max_iterations": 1,
+            "solver.min_load_step": 0.5}
+    _, r = api.json("POST", "/api/jobs", {"kind": "simulate", "overrides": hard})
+    rec = api.wait(r["id"], ("done", "failed", "cancelled"), 120)
+    check(rec["state"] == "failed" and rec["error_kind"] == "solve" and "no convergence" in rec["error"],
+          f"a failing solve: the job fails with the library's message ({rec['error'][:70]}...)")
+    slow = {"geometry.mesh_size": 0.006, "postures.names": ["standing", "supine", "all_fours"]}
+    _, r = api.json("POST", "/api/jobs", {"kind": "simulate", "overrides": slow})
+    api.wait(r["id"], ("running",), 60)
+    print(r["id"])  # server.sh kills this job's process
+
+
+def crashed(api, job_id, folder):
+    rec = api.wait(job_id, ("done", "failed", "cancelled"), 30)
+    left = [f for f in os.listdir(folder) if ".partial-" in f]
+    check(not left, f"its staging folder is removed ({left})")
+    check(rec["state"] == "failed" and "signal 9" in rec["error"], f"a crashed job process: failed ({rec['error']})")
+    s, _ = api.json("GET", "/api/keys")
+    check(s == 200, "the server is still up")
+
+
+def cancel(api):
+    slow = {"geometry.mesh_size": 0.006, "postures.names": ["standing", "supine", "all_fours"]}
+    _, a = api.json("POST", "/api/jobs", {"kind": "surgery", "overrides": slow})
+    _, b = api.json("POST", "/api/jobs", {"kind": "simulate", "overrides": slow})
+    api.wait(a["id"], ("running",), 60)
+    s, rb = api.json("GET", f"/api/jobs/{b['id']}")
+    check(rb["state"] == "queued", "one solve at a time: the second job waits")
+    s, _ = api.json("POST", f"/api/jobs/{b['id']}/cancel", {})
+    check(s == 200 and api.wait(b["id"], ("cancelled",), 5), "queued job cancelled")
+    s, _ = api.json("POST", f"/api/jobs/{a['id']}/cancel", {})
+    ra = api.wait(a["id"], ("cancelled", "done", "failed"), 30)
+    check(s == 200 and ra["state"] == "cancelled", f"running job cancelled ({ra['state']})")
+    s, _ = api.json("POST", f"/api/jobs/{a['id']}/cancel", {})
+    check(s == 409, "cancelling a finished job -> 409")
+    s, _, _ = api.raw("POST", f"/api/jobs/{b['id']}/cancel", "", {"Content-Type": "text/plain"})
+    check(s == 415, "a cross-site form cannot post (cancel as text/plain -> 415)")
+    print(json.dumps([a["id"], b["id"]]))
+
+
+def parallel(api):
+    slow = {"geometry.mesh_size": 0.006, "postures.names": ["standing", "supine", "all_fours"]}
+    ids = [api.json("POST", "/api/jobs", {"kind": "simulate", "overrides": slow})[1]["id"] for _ in range(2)]
+    both = False
+    for _ in range(300):
+        states = [api.json("GET", f"/api/jobs/{i}")[1]["state"] for i in ids]
+        if states == ["running", "running"]:
+            both = True
+            break
+        time.sleep(0.1)
+    check(both, "--workers 2: two jobs run at the same time")
+    for _ in range(100):
+        s, _, log = api.raw("GET", f"/api/jobs/{ids[0]}/files/log.txt")
+        if s == 200 and b"solving posture" in log:
+            break
+        time.sleep(0.1)
+    check(s == 200 and b"solving posture" in log, "a running job's log is readable")
+    for i in ids:
+        api.json("POST", f"/api/jobs/{i}/cancel", {})
+    check(all(api.wait(i, ("cancelled", "done"), 30) for i in ids), "both stopped")
+
+
+def persisted(api, record_file):
+    old = json.load(open(record_file))["record"]
+    s, r = api.json("GET", f"/api/jobs/{old['id']}")
+    check(s == 200 and r["state"] == "done" and r["summary"] == old["summary"],
+          "finished job and its summary persist across a restart")
+    s, _, _ = api.raw("GET", f"/api/jobs/{old['id']}/files/case.resolved.toml")
+    check(s == 200, "its files are still served")
+
+
+if __name__ == "__main__":
+    api = Api(int(sys.argv[1]))
+    phase = sys.argv[2]
+    if phase == "refusals":
+        refusals(api)
+    elif phase == "plan":
+        plan(api)
+    elif phase == "surgery":
+        surgery(api, sys.argv[3], sys.argv[4])
+    elif phase == "calibrate":
+        calibrate(api, sys.argv[3], sys.argv[4])
+    elif phase == "failures":
+        failures(api)
+    elif phase == "crashed":
+        crashed(api, sys.argv[3], sys.argv[4])
+    elif phase == "cancel":
+        cancel(api)
+    elif phase == "parallel":
+        parallel(api)
+    elif phase == "persisted":
+        persisted(api, sys.argv[3])
+    else:
+        sys.exit(f"unknown phase {phase}")
