@@ -228,6 +228,9 @@ def parse_args(argv):
     ap.add_argument("--rerun", action="store_true", help="diagnose again where a result exists")
     ap.add_argument("--summarize-only", action="store_true", help="only score existing results")
     ap.add_argument("--selftest", action="store_true", help="check runner and scoring with a fake binary")
+    ap.add_argument("--expect-exact", action="store_true",
+                    help="exit 1 unless every selected recording is diagnosed and named exactly "
+                         "(the hidden terms, nothing else)")
     a = ap.parse_args(argv)
     a.only = [n for item in a.only for n in item.split(",") if n]
     a.classes = [c for c in a.classes.split(",") if c]
@@ -270,6 +273,12 @@ def main(argv=None):
     text = markdown(summary, scored, command)
     (out / "summary.md").write_text(text)
     print(text)
+    if a.expect_exact:
+        wrong = [e["name"] for e, r in zip(entries, rows)
+                 if r is None or r["named"] is None or set(r["named"]) != set(e["hidden"])]
+        if wrong:
+            print(f"run_diagnose.py: not named exactly: {', '.join(wrong)}")
+            return 1
     return 0
 
 

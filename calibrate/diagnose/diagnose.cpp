@@ -5,6 +5,7 @@
 #include "diagnose.hpp"
 #include "candidate_scores.hpp"
 #include "errors.hpp"
+#include "evidence.hpp"
 #include "fit_parameters.hpp"
 #include "fit_state.hpp"
 #include "log.hpp"
@@ -31,6 +32,11 @@ void check_options(const DiagnoseOptions& o)
   if (o.mesh_ratio > 4)
     throw InputError(fmt::format("--mesh-ratio = {} is out of range: allowed <= 1 (off) or (1, 4]",
                                  o.mesh_ratio));
+  if (!(o.min_effect >= 0 && o.min_effect <= 5))
+    throw InputError(fmt::format("--min-effect = {} is out of range: allowed [0, 5]", o.min_effect));
+  if (!(o.refinement_order >= 0 && o.refinement_order <= 4))
+    throw InputError(fmt::format("--refinement-order = {} is out of range: allowed [0, 4] (0: off)",
+                                 o.refinement_order));
   if (o.max_rounds < 1 || o.max_rounds > 10)
     throw InputError(fmt::format("--max-rounds = {} is out of range: allowed [1, 10]", o.max_rounds));
 }
@@ -66,6 +72,7 @@ struct Search
   Config current;                          ///< the model, with the terms found so far
   std::vector<Free> frees;                 ///< its free parameters
   FitState state;                          ///< its fit
+  std::unique_ptr<FitState> fine_state;    ///< its fit on the finer mesh, if the refinement check made one
 };
 
 /// Steps 1-2: fit the current model; with a finer mesh, the noise floor and
@@ -107,50 +114,124 @@ std::size_t score_candidates(Search& s, Round& rd)
   return tested;
 }
 
-/// Steps 6-7: refit the (at most o.refits) best-scoring candidates with a
-/// p-value below `level`; the largest margin of LR over its critical value
-/// (plus the candidate's mesh-error allowance) is the round's best (the score
-/// is a local, linearised ranking; the refit is not). Returns the best's
-/// free parameters (empty: none refitted).
-std::vector<Free> refit_candidates(Search& s, Round& rd, double level)
+/// The evidence of a refit that needs no further solve: LR, effect in mm,
+/// interval edge, held-out postures; judged without the refinement check.
+Evidence cheap_evidence(const Search& s, const Candidate& cand, const FitState& after, double lr,
+                        double critical)
 {
-  std::vector<Free> best;
+  Evidence e;
+  e.candidate = cand.name;
+  e.lr = lr;
+  e.critical = critical;
+  effect_size(s.state, after, e);
+  e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, e.effect_rms_mm_all);
+  const auto without = held_out_chi2(s.state, s.rec), with = held_out_chi2(after, s.rec);
+  for (std::size_t k = 0; k < without.size() && k < with.size(); ++k)
+    e.held_out_gain.push_back(without[k] - with[k]);
+  judge(e, s.o, s.rec.noise_sigma);
+  return e;
+}
+
+Evidence& evidence_of(Round& rd, const std::string& name)
+{
+  return *std::find_if(rd.evidence.begin(), rd.evidence.end(),
+                       [&](const Evidence& e) { return e.candidate == name; });
+}
+
+/// The refinement check of the round's best: the current model and the model
+/// with the candidate refitted on the finer mesh; their LR there and
+/// extrapolated to the continuum (evidence.hpp). Returns the candidate's fit
+/// on the finer mesh.
+std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vector<Free>& trial)
+{
+  Evidence& e = evidence_of(rd, rd.tested);
+  const Config fine_base = finer(s.current, s.o.mesh_ratio);
+  const FitState without = fit(*s.fine_ev, fine_base, s.frees, log_values(s.state), s.o.lsq,
+                               "refinement check: current model on the finer mesh");
+  auto with = std::make_unique<FitState>(fit(*s.fine_ev, fine_base, trial, log_values(rd.after),
+                                             s.o.lsq, "refinement check: with " + e.candidate));
+  e.refinement_checked = true;
+  e.lr_fine = without.chi2 - with->chi2;
+  e.lr_continuum = continuum_lr(e.lr, e.lr_fine, s.o.mesh_ratio, s.o.refinement_order);
+  log::info("candidate '{}': LR {:.1f} on the finer mesh, {:.1f} in the continuum", e.candidate,
+            e.lr_fine, e.lr_continuum);
+  judge(e, s.o, s.rec.noise_sigma);
+  return with;
+}
+
+/// A refitted candidate: its free parameters and fit.
+struct Refit
+{
+  std::string name;
+  std::vector<Free> frees;
+  FitState after;
+  double lr = 0, critical = 0;
+};
+
+/// Step 6: refit the (at most o.refits) best-scoring candidates with a
+/// p-value below `level`, each with its evidence (cheap_evidence) in rd.
+std::vector<Refit> refit_candidates(Search& s, Round& rd, double level)
+{
+  std::vector<Refit> refits;
   for (std::size_t k = 0; k < rd.scores.size() && k < static_cast<std::size_t>(s.o.refits); ++k)
   {
     const CandidateScore& sc = rd.scores[k];
     if (sc.p_value >= level)
       break;
     const Candidate& cand = candidate(sc.name);
-    std::vector<Free> t = s.frees;
-    t.push_back(free_candidate(cand));
+    Refit r{cand.name, s.frees, {}, 0, rd.critical + sc.mesh_allowance};
+    r.frees.push_back(free_candidate(cand));
     auto y = log_values(s.state);
     y.push_back(std::log(std::clamp(sc.estimate, cand.typical * 1e-3, cand.typical * 1e2)));
-    FitState after;
     try
     {
-      after = fit(s.ev, s.current, t, y, s.o.lsq, "refit with " + cand.name);
+      r.after = fit(s.ev, s.current, r.frees, y, s.o.lsq, "refit with " + cand.name);
     }
     catch (const SolveError& err)
     {
       log::warn("candidate '{}': the refit failed ({}); skipped", cand.name, err.what());
       continue;
     }
-    const double lr = s.state.chi2 - after.chi2;
-    const double critical = rd.critical + sc.mesh_allowance;
+    r.lr = s.state.chi2 - r.after.chi2;
     log::info("candidate '{}': LR = {:.1f} against the critical {:.1f} (level {:.2g}, mesh-error "
               "allowance {:.1f})",
-              cand.name, lr, critical, level, sc.mesh_allowance);
-    rd.refits.push_back({cand.name, lr});
-    if (rd.tested.empty() || lr - critical > rd.lr - rd.critical_used)
-    {
-      rd.tested = cand.name;
-      rd.lr = lr;
-      rd.critical_used = critical;
-      rd.after = std::move(after);
-      best = t;
-    }
+              cand.name, r.lr, r.critical, level, sc.mesh_allowance);
+    rd.refits.push_back({cand.name, r.lr});
+    rd.evidence.push_back(cheap_evidence(s, cand, r.after, r.lr, r.critical));
+    refits.push_back(std::move(r));
   }
-  return best;
+  // Largest margin of LR over its critical value first: the score is a
+  // local, linearised ranking, the refit is not.
+  std::sort(refits.begin(), refits.end(),
+            [](const Refit& a, const Refit& b) { return a.lr - a.critical > b.lr - b.critical; });
+  return refits;
+}
+
+/// Step 7: the first refit (by margin) whose evidence holds, with the
+/// refinement check when it is on; rd.tested/lr/after describe it (or the
+/// best refit when none holds). Returns its free parameters and, from the
+/// refinement check, its fit on the finer mesh.
+std::pair<std::vector<Free>, std::unique_ptr<FitState>> decide(Search& s, Round& rd,
+                                                               std::vector<Refit>& refits)
+{
+  for (std::size_t k = 0; k < refits.size(); ++k)
+  {
+    Refit& r = refits[k];
+    if (k > 0 && !evidence_of(rd, r.name).failed.empty())
+      continue;
+    rd.tested = r.name;
+    rd.lr = r.lr;
+    rd.critical_used = r.critical;
+    rd.after = r.after;
+    if (!evidence_of(rd, r.name).failed.empty())
+      continue; // the best by margin fails: try the others that hold
+    std::unique_ptr<FitState> fine;
+    if (s.fine_ev && s.o.refinement_order > 0)
+      fine = check_refinement(s, rd, r.frees);
+    if (evidence_of(rd, r.name).failed.empty())
+      return {r.frees, std::move(fine)};
+  }
+  return {};
 }
 
 /// One round of discovery (steps 4-7); true if a candidate was accepted
@@ -169,8 +250,11 @@ bool discovery_round(Search& s, Diagnosis& d)
   const std::size_t tested = score_candidates(s, rd);
   const double level = s.o.alpha / std::max<std::size_t>(tested, 1);
   rd.critical = boundary_lr_critical(level);
-  std::vector<Free> trial = refit_candidates(s, rd, level);
-  rd.accepted = !rd.tested.empty() && rd.lr > rd.critical_used;
+  std::vector<Refit> refits = refit_candidates(s, rd, level);
+  auto [trial, fine] = decide(s, rd, refits);
+  rd.accepted = !rd.tested.empty() && evidence_of(rd, rd.tested).failed.empty();
+  if (rd.accepted)
+    evidence_of(rd, rd.tested).accepted = true;
   if (!rd.tested.empty())
     log::info("best refit '{}': LR = {:.1f}: {}", rd.tested, rd.lr,
               rd.accepted ? "accepted" : "rejected");
@@ -181,6 +265,7 @@ bool discovery_round(Search& s, Diagnosis& d)
   s.frees = trial;
   s.current = rd.after.config; // the candidate term is on from now on
   s.state = rd.after;
+  s.fine_state = std::move(fine); // none: step 9 refits on the finer mesh
   return true;
 }
 } // namespace
@@ -203,9 +288,15 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   // Step 9: the numerical uncertainty of the found values.
   if (s.fine_ev && (!d.discovered.empty() || d.fit_only) && !s.frees.empty())
   {
-    const FitState f = fit(*s.fine_ev, finer(s.current, o.mesh_ratio), s.frees, log_values(s.state),
-                           o.lsq, "refit on the finer mesh");
+    const FitState f = s.fine_state ? *s.fine_state
+                                    : fit(*s.fine_ev, finer(s.current, o.mesh_ratio), s.frees,
+                                          log_values(s.state), o.lsq, "refit on the finer mesh");
     d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.se_numerical);
+  }
+  if (!d.discovered.empty())
+  {
+    d.se_model_form = posture_jackknife_se(d.final_fit, rec);
+    widen_by_model_form(d.final_fit, d.se_model_form);
   }
   d.surfaces = s.ev.surfaces(d.final_fit.config);
   if (s.fine_ev)

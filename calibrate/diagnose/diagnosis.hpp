@@ -29,7 +29,33 @@ struct DiagnoseOptions
   /// so that the discretisation error of the diagnosis mesh is not mistaken
   /// for missing physics. mesh_ratio <= 1: off (sigma_eff = sigma).
   double mesh_ratio = 1.5;
+  /// Practical significance: an accepted term must change the model surface
+  /// by at least this fraction of the noise sigma (RMS over all points), also
+  /// at the end of its 95 % interval nearest the null (0: off).
+  double min_effect = 0.1;
+  /// Refinement check: an accepted term's LR must stay above the critical
+  /// value on the mesh `mesh_ratio` times finer and extrapolated to the
+  /// continuum (evidence.hpp, continuum_lr) with this order (0: off).
+  double refinement_order = 2.0;
+  /// Held-out postures: an accepted term must improve the linearised
+  /// prediction of the postures it was not fitted on (sum of chi2 gains > 0).
+  bool held_out_check = true;
   LsqOptions lsq;
+};
+
+/// The evidence for or against one refitted candidate (evidence.hpp).
+struct Evidence
+{
+  std::string candidate;
+  double lr = 0, critical = 0;                 ///< LR and its critical value (with the mesh allowance)
+  std::vector<double> effect_rms_mm, effect_max_mm; ///< per posture
+  double effect_rms_mm_all = 0;                ///< RMS over all points
+  double effect_at_null_edge_mm = 0;           ///< effect at the interval end nearest q = 0
+  std::vector<double> held_out_gain;           ///< per posture: chi2_k without - with the term
+  bool refinement_checked = false;
+  double lr_fine = 0, lr_continuum = 0;        ///< refinement check (refinement_checked)
+  std::vector<std::string> failed;             ///< reasons for rejection (empty: holds every rule checked)
+  bool accepted = false;                       ///< the round's accepted candidate
 };
 
 /// A region of systematic residual on one posture's surface.
@@ -86,6 +112,7 @@ struct Round
   double lr = 0, critical = 0;        ///< LR of `tested`; critical value of the level
   double critical_used = 0;           ///< critical + the tested candidate's mesh allowance
   bool accepted = false;
+  std::vector<Evidence> evidence;     ///< every refitted candidate, in refit order
 };
 
 struct Diagnosis
@@ -93,6 +120,7 @@ struct Diagnosis
   std::vector<Round> rounds;
   FitState final_fit;                 ///< after a discovery: refitted on the finer mesh
   std::vector<double> se_numerical;   ///< numerical part of the SE of ln p (final_fit)
+  std::vector<double> se_model_form;  ///< model-form part of the SE of ln p (posture jackknife)
   /// Skin surface documents (surface_export.hpp) of the final model per
   /// posture, on the diagnosis mesh (rank 0).
   std::vector<nlohmann::json> surfaces;

@@ -1,5 +1,6 @@
 // The diagnosis as JSON and as plain words (diagnosis_report.hpp).
 #include "diagnosis_report.hpp"
+#include "evidence.hpp"
 #include "candidates.hpp"
 #include <algorithm>
 #include <cmath>
@@ -58,6 +59,65 @@ std::string fit_line(const FitState& s)
   }
   return p.empty() ? "(no free parameter)" : p;
 }
+
+/// Steps WHAT and MODEL IT of one round, with the evidence for and against
+/// each refitted candidate.
+std::string candidates_text(const Round& r, const Recording& rec)
+{
+  std::string s;
+  s += "  WHAT: candidate scores (Lagrange multiplier, one-sided; mesh-error allowance):\n";
+  for (const auto& c : r.scores)
+    s += fmt::format("    {:<20} S = {:9.1f}   p = {:.2g}   allowance {:.1f}\n", c.name, c.score,
+                     c.p_value, c.mesh_allowance);
+  if (r.tested.empty())
+    s += "  no candidate is significant\n";
+  else
+  {
+    std::string refits;
+    for (const auto& [name, lr] : r.refits)
+      refits += fmt::format("{}{} LR = {:.1f}", refits.empty() ? "" : ", ", name, lr);
+    std::string runner = "(none)";
+    for (const auto& c : r.scores)
+      if (c.name != r.tested)
+      {
+        runner = c.name;
+        break;
+      }
+    s += fmt::format("  best: {} (runner-up: {}; refitted: {})\n", r.tested, runner, refits);
+    s += fmt::format("  MODEL IT: refit with {}: {}\n", r.tested, fit_line(r.after));
+    s += fmt::format("  likelihood ratio {:.1f} against the critical value {:.1f} ({:.1f} + mesh "
+                     "allowance {:.1f}): {}\n",
+                     r.lr, r.critical_used, r.critical, r.critical_used - r.critical,
+                     r.accepted ? "ACCEPTED" : "rejected");
+    if (r.accepted)
+    {
+      s += "  FIT BEFORE -> AFTER:\n";
+      for (std::size_t p = 0; p < rec.postures.size(); ++p)
+        s += fmt::format("    {:<12} RMS {:.3f} -> {:.3f} mm, max {:.3f} -> {:.3f} mm\n",
+                         rec.postures[p].name, 1e3 * r.before.rms[p], 1e3 * r.after.rms[p],
+                         1e3 * r.before.max_abs[p], 1e3 * r.after.max_abs[p]);
+    }
+  }
+  if (!r.evidence.empty())
+  {
+    s += "  EVIDENCE (each refitted candidate, the rules of the decision):\n";
+    for (const auto& e : r.evidence)
+      s += evidence_text(e);
+  }
+  return s;
+}
+
+/// Candidates whose LR passed but which other rules refused, with the reasons.
+std::string refused_text(const Diagnosis& d)
+{
+  std::string t;
+  for (const auto& r : d.rounds)
+    for (const auto& e : r.evidence)
+      if (e.lr > e.critical && !e.failed.empty())
+        t += fmt::format(" {} was refused although its LR {:.1f} passes {:.1f}: {}.", e.candidate,
+                         e.lr, e.critical, e.failed.back());
+  return t;
+}
 } // namespace
 
 std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
@@ -90,13 +150,15 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
       return fmt::format("The current model explains the recording: RMS distance {:.3f} mm against "
                          "the noise {:.3f} mm (chi2/dof = {:.3f}, p = {:.2g}); no candidate physics "
                          "is significant at {:g}. No term was added (case.diagnosed.toml: the "
-                         "current model, refitted).",
-                         rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p, alpha);
+                         "current model, refitted).{}",
+                         rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p, alpha,
+                         refused_text(d));
     return fmt::format("The residual is systematic (RMS {:.3f} mm against the noise {:.3f} mm, "
                        "chi2/dof = {:.3f}, p = {:.2g}) but no candidate of the library explains it "
                        "significantly: the missing physics is outside the library, or a known "
-                       "parameter is wrong. No term was added.",
-                       rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p);
+                       "parameter is wrong. No term was added.{}",
+                       rms_all(first), noise_mm, first.chi2 / first.dof, first.gof_p,
+                       refused_text(d));
   }
   std::string what;
   for (const auto& name : d.discovered)
@@ -162,10 +224,15 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
       q["critical_value"] = r.critical_used;
       q["critical_value_noise_only"] = r.critical;
       q["accepted"] = r.accepted;
+      q["evidence"] = nlohmann::json::array();
+      for (const auto& e : r.evidence)
+        q["evidence"].push_back(to_json(e));
     }
     j["rounds"].push_back(q);
   }
   j["final"] = to_json(d.final_fit, rec);
+  j["se_log_numerical"] = d.se_numerical;
+  j["se_log_model_form"] = d.se_model_form;
   j["posture_solves"] = d.posture_solves;
   j["wall_time_s"] = d.seconds;
   return j;
@@ -209,43 +276,16 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
     }
     if (d.fit_only)
       continue;
-    s += "  WHAT: candidate scores (Lagrange multiplier, one-sided; mesh-error allowance):\n";
-    for (const auto& c : r.scores)
-      s += fmt::format("    {:<20} S = {:9.1f}   p = {:.2g}   allowance {:.1f}\n", c.name, c.score,
-                       c.p_value, c.mesh_allowance);
-    if (r.tested.empty())
-      s += "  no candidate is significant\n";
-    else
-    {
-      std::string refits;
-      for (const auto& [name, lr] : r.refits)
-        refits += fmt::format("{}{} LR = {:.1f}", refits.empty() ? "" : ", ", name, lr);
-      std::string runner = "(none)";
-      for (const auto& c : r.scores)
-        if (c.name != r.tested)
-        {
-          runner = c.name;
-          break;
-        }
-      s += fmt::format("  best: {} (runner-up: {}; refitted: {})\n", r.tested, runner, refits);
-      s += fmt::format("  MODEL IT: refit with {}: {}\n", r.tested, fit_line(r.after));
-      s += fmt::format("  likelihood ratio {:.1f} against the critical value {:.1f} ({:.1f} + mesh "
-                       "allowance {:.1f}): {}\n",
-                       r.lr, r.critical_used, r.critical, r.critical_used - r.critical,
-                       r.accepted ? "ACCEPTED" : "rejected");
-      if (r.accepted)
-      {
-        s += "  FIT BEFORE -> AFTER:\n";
-        for (std::size_t p = 0; p < rec.postures.size(); ++p)
-          s += fmt::format("    {:<12} RMS {:.3f} -> {:.3f} mm, max {:.3f} -> {:.3f} mm\n",
-                           rec.postures[p].name, 1e3 * r.before.rms[p], 1e3 * r.after.rms[p],
-                           1e3 * r.before.max_abs[p], 1e3 * r.after.max_abs[p]);
-      }
-    }
+    s += candidates_text(r, rec);
   }
   if (!d.se_numerical.empty())
-    s += fmt::format("\nFinal fit on the finer check mesh (numerical uncertainty included): {}\n",
-                     fit_line(d.final_fit));
+    s += fmt::format("\nFinal fit on the finer check mesh (numerical{} uncertainty included): {}\n",
+                     d.se_model_form.empty() ? "" : " and model-form", fit_line(d.final_fit));
+  for (std::size_t i = 0; i < d.se_model_form.size() && i < d.final_fit.names.size(); ++i)
+    s += fmt::format("  {}: SE of ln p numerical {:.3f}, model-form (posture jackknife) {:.3f}, "
+                     "total {:.3f}\n",
+                     d.final_fit.names[i], i < d.se_numerical.size() ? d.se_numerical[i] : 0.0,
+                     d.se_model_form[i], d.final_fit.uncertainty.se_log[i]);
   s += "\n" + d.verdict + "\n";
   s += fmt::format("({} posture solves, {:.1f} s)\n", d.posture_solves, d.seconds);
   return s;

@@ -45,6 +45,14 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--mesh-ratio", o->d.mesh_ratio, "numerical noise floor: the fitted model is "
                                                    "also solved on a mesh this many times finer "
                                                    "(<= 1: off)")->capture_default_str();
+  app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
+                                                   "this fraction of the noise (RMS), also at its "
+                                                   "interval's end (0: off)")->capture_default_str();
+  app->add_option("--refinement-order", o->d.refinement_order,
+                  "an accepted term's LR must pass on the finer mesh and extrapolated to the "
+                  "continuum with this order (0: off)")->capture_default_str();
+  app->add_flag("!--no-held-out", o->d.held_out_check,
+                "do not require a gain in the prediction of held-out postures");
   return {app, [o]()
           {
             const Config c = load_case(o->case_file, o->sets);

@@ -1,0 +1,54 @@
+#pragma once
+// The evidence for and against adding a refitted candidate (diagnose.hpp):
+// beyond the likelihood ratio, its effect on the surface in mm, how far its
+// interval reaches towards the null, whether it predicts postures it was not
+// fitted on, and whether its likelihood ratio survives mesh refinement.
+#include "diagnosis.hpp"
+#include <string>
+#include <vector>
+
+namespace breastsim::calibration
+{
+/// The effect of a term in mm: the change of the model surface (normal
+/// distances at the recorded points) between the fit without and with it.
+/// Per posture RMS and max, and RMS over all points.
+void effect_size(const FitState& without, const FitState& with, Evidence& e);
+
+/// The part of the effect that the 95 % interval cannot tell from the null:
+/// effect x q_lo / q_hat (the effect is linear in q for small q; q = 0 is the
+/// model without the term).
+double effect_at_interval_edge(const FitState& with, const std::string& parameter, double effect);
+
+/// Held-out prediction, linearised about the fit: for each posture k, the
+/// Gauss-Newton step fitted without k's residuals,
+///   delta_k = -(J_-k^T J_-k)^-1 J_-k^T r_-k,
+/// and the chi2 of posture k predicted with it, |r_k + J_k delta_k|^2.
+/// (Residual rows: each posture's points, then each landmark's 3 rows.)
+std::vector<double> held_out_chi2(const FitState& s, const Recording& rec);
+
+/// Model-form uncertainty, estimated from the data: the jackknife over the
+/// postures of the linearised leave-one-posture-out estimates of ln p,
+///   se_k^2 = (n - 1)/n sum_k (delta_k - mean delta)^2,
+/// which is of the statistical size when the model fits every posture alike
+/// and grows when the postures ask for different values (a missing or
+/// misshapen term). Per parameter of `s`.
+std::vector<double> posture_jackknife_se(const FitState& s, const Recording& rec);
+
+/// Add `se_model_form` to each parameter's SE of ln p in quadrature and
+/// recompute the 95 % intervals.
+void widen_by_model_form(FitState& s, const std::vector<double>& se_model_form);
+
+/// The likelihood ratio extrapolated to the continuum from the diagnosis mesh
+/// h and the mesh h/r: the square root of the LR (the effect in noise units)
+/// extrapolated as an error of order p,
+///   sqrt(LR_0) = sqrt(LR_f) + (sqrt(LR_f) - sqrt(LR_h)) / (r^p - 1).
+double continuum_lr(double lr_h, double lr_fine, double ratio, double order);
+
+/// The acceptance rules in force (DiagnoseOptions) applied to `e`: fills
+/// e.failed with a plain-words reason per failed rule.
+void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma);
+
+/// The evidence as plain text lines (diagnosis.txt) and JSON.
+std::string evidence_text(const Evidence& e);
+nlohmann::json to_json(const Evidence& e);
+} // namespace breastsim::calibration

@@ -1,0 +1,122 @@
+// The evidence rules of the diagnosis (calibrate/diagnose/evidence.hpp) on
+// hand-made fits whose answers are known in closed form.
+#include "evidence.hpp"
+#include <cmath>
+#include <gtest/gtest.h>
+
+using namespace breastsim::calibration;
+
+namespace
+{
+/// Two postures of two points each, one parameter with dr/dln p = 1 at every
+/// point, residuals +1 (posture 1) and -1 (posture 2): the full fit is at its
+/// optimum (sum r J = 0).
+FitState two_postures(Recording& rec)
+{
+  rec.noise_sigma = 1e-3;
+  rec.postures.resize(2);
+  FitState s;
+  s.names = {"q"};
+  s.values = {2.0};
+  s.uncertainty.se_log = {0.1};
+  s.uncertainty.interval = {{2.0 * std::exp(-0.196), 2.0 * std::exp(0.196)}};
+  s.distances = {{1e-3, 1e-3}, {-1e-3, -1e-3}};
+  s.r = {1, 1, -1, -1};
+  s.J = {{1}, {1}, {1}, {1}};
+  return s;
+}
+} // namespace
+
+// Without posture 1 the step is delta = -(2)^-1 (-2) = +1, so posture 1 is
+// predicted at r = 1 + 1 = 2 (chi2 = 8); the same for posture 2 by symmetry.
+TEST(Evidence, HeldOutPredictionOfALinearModel)
+{
+  Recording rec;
+  const FitState s = two_postures(rec);
+  const auto chi2 = held_out_chi2(s, rec);
+  ASSERT_EQ(chi2.size(), 2u);
+  EXPECT_NEAR(chi2[0], 8.0, 1e-12);
+  EXPECT_NEAR(chi2[1], 8.0, 1e-12);
+}
+
+// Leave-one-out steps +1 and -1: se^2 = (n - 1)/n sum (delta - mean)^2 = 1/2 * 2.
+TEST(Evidence, PostureJackknifeAndTheWidenedInterval)
+{
+  Recording rec;
+  FitState s = two_postures(rec);
+  const auto se = posture_jackknife_se(s, rec);
+  ASSERT_EQ(se.size(), 1u);
+  EXPECT_NEAR(se[0], 1.0, 1e-12);
+  widen_by_model_form(s, se);
+  const double total = std::hypot(0.1, 1.0);
+  EXPECT_NEAR(s.uncertainty.se_log[0], total, 1e-12);
+  EXPECT_NEAR(s.uncertainty.interval[0][0], 2.0 * std::exp(-1.96 * total), 1e-12);
+  EXPECT_NEAR(s.uncertainty.interval[0][1], 2.0 * std::exp(1.96 * total), 1e-12);
+}
+
+// Postures that agree give no model-form part.
+TEST(Evidence, AgreeingPosturesGiveNoModelFormUncertainty)
+{
+  Recording rec;
+  FitState s = two_postures(rec);
+  s.r = {1, -1, 1, -1};
+  EXPECT_NEAR(posture_jackknife_se(s, rec)[0], 0.0, 1e-12);
+}
+
+TEST(Evidence, EffectSizeInMillimetres)
+{
+  FitState without, with;
+  without.distances = {{0.0, 0.0}, {1e-3, 1e-3}};
+  with.distances = {{3e-4, -4e-4}, {1e-3, 1e-3}};
+  Evidence e;
+  effect_size(without, with, e);
+  ASSERT_EQ(e.effect_rms_mm.size(), 2u);
+  EXPECT_NEAR(e.effect_rms_mm[0], std::sqrt((0.09 + 0.16) / 2), 1e-12);
+  EXPECT_NEAR(e.effect_max_mm[0], 0.4, 1e-12);
+  EXPECT_NEAR(e.effect_rms_mm[1], 0.0, 1e-12);
+  EXPECT_NEAR(e.effect_rms_mm_all, std::sqrt(0.25 / 4), 1e-12);
+  // The interval's lower end at a quarter of q: a quarter of the effect.
+  with.names = {"q"};
+  with.values = {4.0};
+  with.uncertainty.interval = {{1.0, 9.0}};
+  EXPECT_NEAR(effect_at_interval_edge(with, "q", 0.2), 0.05, 1e-12);
+  EXPECT_NEAR(effect_at_interval_edge(with, "other", 0.2), 0.0, 1e-12);
+}
+
+// sqrt(LR_0) = sqrt(LR_f) + (sqrt(LR_f) - sqrt(LR_h)) / (r^p - 1): an LR that
+// does not change with the mesh is kept, one that halves its square root
+// from h to h/2 at order 1 extrapolates to zero.
+TEST(Evidence, ContinuumLikelihoodRatio)
+{
+  EXPECT_NEAR(continuum_lr(400, 400, 1.5, 1), 400, 1e-9);
+  EXPECT_NEAR(continuum_lr(400, 100, 2.0, 1), 0.0, 1e-9);
+  EXPECT_NEAR(continuum_lr(400, 225, 1.5, 2), std::pow(15 + (15 - 20) / 1.25, 2), 1e-9);
+}
+
+TEST(Evidence, JudgeNamesEachFailedRule)
+{
+  DiagnoseOptions o;
+  o.min_effect = 0.2; // of sigma = 0.5 mm: 0.1 mm
+  Evidence e;
+  e.candidate = "base_springs";
+  e.lr = 400;
+  e.critical = 190;
+  e.effect_rms_mm_all = 0.111;
+  e.effect_at_null_edge_mm = 0.096;
+  e.held_out_gain = {10, -20};
+  judge(e, o, 0.5e-3);
+  ASSERT_EQ(e.failed.size(), 2u);
+  EXPECT_NE(e.failed[0].find("interval reaches the null"), std::string::npos) << e.failed[0];
+  EXPECT_NE(e.failed[1].find("held-out postures"), std::string::npos) << e.failed[1];
+  e.refinement_checked = true;
+  e.lr_fine = 250;
+  e.lr_continuum = 49;
+  e.effect_at_null_edge_mm = 0.2;
+  e.held_out_gain = {10, 20};
+  judge(e, o, 0.5e-3);
+  ASSERT_EQ(e.failed.size(), 1u);
+  EXPECT_NE(e.failed[0].find("does not survive refinement"), std::string::npos) << e.failed[0];
+  e.lr_continuum = 200;
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty());
+}
