@@ -293,7 +293,8 @@ TEST(UserMesh, TheNippleMustBeASkinNode)
   catch (const InputError& e)
   {
     const std::string m = e.what();
-    EXPECT_NE(m.find("no skin node at the nipple (0, geometry.H = 0.05, 0)"), std::string::npos) << m;
+    EXPECT_NE(m.find("no skin node at the nipple (0, geometry.H = 0.05, geometry.nipple_z = 0)"),
+              std::string::npos) << m;
     EXPECT_NE(m.find("the highest node on x = 0 is at y = 0.03"), std::string::npos) << m;
   }
 }

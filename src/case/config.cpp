@@ -256,7 +256,13 @@ void check_user_mesh_keys(const Config& c)
 {
   const std::string& file = c.text("geometry.mesh_file");
   if (file.empty())
+  {
+    if (c.number("geometry.nipple_z") != 0)
+      throw InputError(fmt::format("key 'geometry.nipple_z' = {} needs geometry.mesh_file: the cap's "
+                                   "nipple is at z = 0",
+                                   c.number("geometry.nipple_z")));
     return;
+  }
   if (!std::filesystem::is_regular_file(file))
     throw InputError(fmt::format("key 'geometry.mesh_file' = \"{}\": no such file", file));
   if (c.integer("geometry.refinements") != 0)

@@ -19,6 +19,9 @@ void HalfCapSpec::declare(std::vector<KeyInfo>& keys)
                           "of the parametric cap; \"\": the cap");
   file.path = true;
   keys.push_back(file);
+  keys.push_back(number_key("geometry.nipple_z", "m", d.nipple_z, -0.5, 0.5,
+                            "with geometry.mesh_file: z of the mesh's nipple node (0, H, nipple_z) "
+                            "(the cap's nipple has z = 0)"));
 }
 
 HalfCapSpec HalfCapSpec::from(const Config& c)
@@ -30,6 +33,7 @@ HalfCapSpec HalfCapSpec::from(const Config& c)
   s.order = static_cast<int>(c.integer("geometry.order"));
   s.refinements = static_cast<int>(c.integer("geometry.refinements"));
   s.mesh_file = c.text("geometry.mesh_file");
+  s.nipple_z = c.number("geometry.nipple_z");
   return s;
 }
 

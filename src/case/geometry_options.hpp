@@ -3,6 +3,7 @@
 // incision of the surgery (incision.*), each a plain struct that declares
 // its keys for the schema and reads them from a Config.
 #include "config.hpp"
+#include <array>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,15 @@ struct HalfCapSpec
   /// A user's tagged gmsh mesh instead of the parametric cap ("": the cap);
   /// R and H then describe it (H: the height of its nipple node (0, H, 0)).
   std::string mesh_file;
+  double nipple_z = 0;      ///< z of the nipple node (0, H, nipple_z) of a user mesh [m]
 
   bool operator==(const HalfCapSpec&) const = default;
   /// Append geometry.R, geometry.H, geometry.mesh_size, geometry.order,
   /// geometry.refinements, geometry.mesh_file (defaults: the initialisers above).
   static void declare(std::vector<KeyInfo>& keys);
   static HalfCapSpec from(const Config& c);
+  /// The nipple in the neutral state: (0, H, nipple_z).
+  std::array<double, 3> nipple() const { return {0.0, H, nipple_z}; }
   /// Throws InputError when a user mesh is set: `job` needs the parametric cap.
   void require_parametric_cap(const std::string& job) const;
 };

@@ -24,4 +24,5 @@ Command add_converge_command(CLI::App& root); // converge_command.cpp
 Command add_record_command(CLI::App& root);   // record_command.cpp
 Command add_diagnose_command(CLI::App& root); // diagnose_command.cpp
 Command add_serve_command(CLI::App& root);    // serve_command.cpp
+Command add_neutral_state_command(CLI::App& root); // neutral_state_command.cpp
 } // namespace breastsim::cli

@@ -105,6 +105,7 @@ int main(int argc, char** argv)
       cli::add_record_command(app),
       cli::add_diagnose_command(app),
       cli::add_serve_command(app),
+      cli::add_neutral_state_command(app),
   };
 
   if (const std::string sub = unknown_subcommand(argc, argv, app); !sub.empty())

@@ -154,7 +154,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   apply_parameters(c, model);
   res.dofs = model.num_dofs();
   res.linear_solver = resolved_linear_solver(NewtonOptions::from(c), res.dofs);
-  ObservableProbe probe(model, {0.0, case_options.geometry.H, 0.0});
+  ObservableProbe probe(model, case_options.geometry.nipple());
   log::info("model: {} unknowns, linear solver {}, terms on: {}", res.dofs, res.linear_solver,
             [&] {
               std::string s;

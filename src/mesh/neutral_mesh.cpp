@@ -8,7 +8,7 @@ TaggedDolfinxMesh build_neutral_mesh(const Config& c, MPI_Comm comm)
 {
   const HalfCapSpec spec = HalfCapSpec::from(c);
   if (!spec.mesh_file.empty())
-    return load_user_mesh(spec.mesh_file, spec.order, comm, std::array<double, 3>{0.0, spec.H, 0.0});
+    return load_user_mesh(spec.mesh_file, spec.order, comm, spec.nipple());
   int rank;
   MPI_Comm_rank(comm, &rank);
   meshes::TaggedMesh m;

@@ -226,10 +226,10 @@ void check_nipple_node(const meshes::TaggedMesh& m, const std::filesystem::path&
         return;
     }
   throw InputError(fmt::format("geometry.mesh_file = '{}': no skin node at the nipple (0, geometry.H "
-                               "= {:.6g}, 0), where the observables are read; set geometry.H to the "
-                               "height of the mesh's nipple node (the highest node on x = 0 is at y "
-                               "= {:.6g})",
-                               path.string(), nipple[1], top));
+                               "= {:.6g}, geometry.nipple_z = {:.6g}), where the observables are read; "
+                               "set geometry.H and geometry.nipple_z to the mesh's nipple node (the "
+                               "highest node on x = 0 is at y = {:.6g})",
+                               path.string(), nipple[1], nipple[2], top));
 }
 } // namespace
 

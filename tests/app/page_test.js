@@ -103,6 +103,9 @@ async function walk(page, errors) {
   await page.screenshot({ path: path.join(shots, "4-running.png") });
   await page.reload(); // while the job runs: the page reattaches and follows it to its end
   await page.waitForFunction(() => window.breastsimApp && window.breastsimApp.ready, null, { timeout: 30000 });
+  // The stage shows once the page's first poll of the job has answered.
+  await page.waitForFunction(() => /running|done/.test(document.querySelector("#stage").textContent), null,
+                             { timeout: 30000 }).catch(() => {});
   const reattached = await page.textContent("#stage");
   await page.waitForSelector("#result-table", { timeout: 300000 });
   check(/running|done/.test(reattached), `a reload during the run reattaches to the job (${reattached})`);

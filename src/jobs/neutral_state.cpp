@@ -1,0 +1,151 @@
+#include "neutral_state.hpp"
+#include "breastsim_registry.hpp"
+#include "case_options.hpp"
+#include "half_cap.hpp"
+#include "log.hpp"
+#include "model_setup.hpp"
+#include "msh_writer.hpp"
+#include "output.hpp"
+#include "solver_options.hpp"
+#include "user_mesh.hpp"
+#include <dolfinx/common/IndexMap.h>
+#include "errors.hpp"
+#include "on_root.hpp"
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace breastsim
+{
+namespace
+{
+/// The case's geometry as a TaggedMesh (the user's mesh or the cap; call on one rank).
+meshes::TaggedMesh root_mesh(const HalfCapSpec& spec)
+{
+  const int base = generated::tag("base"), skin = generated::tag("skin"), sym = generated::tag("symmetry");
+  return spec.mesh_file.empty() ? meshes::mesh_half_cap(spec, base, skin, sym)
+                                : meshes::read_user_mesh(spec.mesh_file, spec.order, {base, skin, sym});
+}
+
+/// Node coordinates of the distributed mesh in the root mesh's numbering
+/// (input global indices), gathered on rank 0.
+std::vector<double> gather_nodes(const dolfinx::mesh::Mesh& mesh, std::size_t num_nodes)
+{
+  const auto& g = mesh.geometry();
+  const std::int32_t owned = g.index_map()->size_local();
+  std::vector<double> mine;
+  for (std::int32_t i = 0; i < owned; ++i)
+    mine.insert(mine.end(), {static_cast<double>(g.input_global_indices()[i]), g.x()[3 * i],
+                             g.x()[3 * i + 1], g.x()[3 * i + 2]});
+  const int size = static_cast<int>(mine.size());
+  std::vector<int> sizes(dolfinx::MPI::size(mesh.comm())), offsets(sizes.size(), 0);
+  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, mesh.comm());
+  for (std::size_t r = 1; r < sizes.size(); ++r)
+    offsets[r] = offsets[r - 1] + sizes[r - 1];
+  std::vector<double> all(rank_of(mesh.comm()) == 0 ? offsets.back() + sizes.back() : 0);
+  MPI_Gatherv(mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(), MPI_DOUBLE, 0,
+              mesh.comm());
+  std::vector<double> x(rank_of(mesh.comm()) == 0 ? 3 * num_nodes : 0);
+  for (std::size_t k = 0; k + 3 < all.size(); k += 4)
+    std::copy(&all[k + 1], &all[k + 4], &x[3 * static_cast<std::size_t>(all[k])]);
+  return x;
+}
+
+/// The node of `m` at the nipple `p` (root rank); InputError if none is
+/// within 1e-6 of the mesh's extent.
+std::size_t nipple_node(const meshes::TaggedMesh& m, const std::array<double, 3>& p)
+{
+  std::size_t best = 0;
+  double best_d = std::numeric_limits<double>::infinity(), extent = 0;
+  for (std::size_t n = 0; n < m.num_nodes(); ++n)
+  {
+    const double d = std::hypot(m.x[3 * n] - p[0], m.x[3 * n + 1] - p[1], m.x[3 * n + 2] - p[2]);
+    extent = std::max({extent, std::abs(m.x[3 * n]), std::abs(m.x[3 * n + 1]), std::abs(m.x[3 * n + 2])});
+    if (d < best_d)
+      std::tie(best, best_d) = std::make_pair(n, d);
+  }
+  if (!(best_d <= 1e-6 * extent))
+    throw InputError(fmt::format("no mesh node at the nipple (0, geometry.H = {:.6g}, geometry.nipple_z "
+                                 "= {:.6g}): set them to the nipple node of the recorded shape",
+                                 p[1], p[2]));
+  return best;
+}
+
+/// The case of the reference: its mesh file and nipple.
+Config reference_case(const Config& c, const std::array<double, 3>& nipple)
+{
+  Config r = c;
+  r.set("geometry.mesh_file", std::string("reference.msh"));
+  r.set("geometry.H", nipple[1]);
+  r.set("geometry.nipple_z", nipple[2]);
+  r.set("geometry.refinements", std::int64_t(0));
+  return r;
+}
+
+nlohmann::json to_json(const NeutralStateResult& r)
+{
+  nlohmann::json it = nlohmann::json::array();
+  for (const auto& i : r.inverse.iterations)
+    it.push_back({{"mismatch_rms_m", i.rms_mismatch}, {"mismatch_max_m", i.max_mismatch},
+                  {"omega", i.omega}, {"newton_iterations", i.newton_iterations}});
+  return {{"posture", r.posture.name}, {"theta_deg", r.posture.theta_deg},
+          {"converged", r.inverse.converged}, {"iterations", it}, {"wall_time_s", r.inverse.seconds},
+          {"nipple_neutral_m", r.nipple}, {"max_node_shift_m", r.max_node_shift}};
+}
+} // namespace
+
+NeutralStateResult neutral_state(const Config& c, const Posture& posture, const InverseOptions& o,
+                                 const OutputTarget& out, MPI_Comm comm)
+{
+  const CaseOptions co = CaseOptions::from(c);
+  meshes::TaggedMesh loaded;
+  loaded.order = co.geometry.order;
+  std::size_t nipple = 0;
+  on_root(comm, [&] { // every rank throws rank 0's InputError
+    loaded = root_mesh(co.geometry);
+    nipple = nipple_node(loaded, co.geometry.nipple());
+  });
+  Model model(to_dolfinx(comm, loaded, co.geometry.order), Constraints{true, co.fixed_base});
+  apply_parameters(c, model);
+  NewtonSolver newton(model, SolverOptions::from(c).newton);
+  const double f = set_gravity(model, gravity_vector(posture.theta_deg, co.gravity));
+  NeutralStateResult r{posture, {}, {}, 0};
+  r.inverse = inverse_neutral_state(model, newton, o, f);
+  OutputDir dir(out, comm);
+  const std::vector<double> x = gather_nodes(*model.mesh().mesh, loaded.num_nodes());
+  if (rank_of(comm) == 0)
+  {
+    for (std::size_t i = 0; i < x.size(); ++i)
+      r.max_node_shift = std::max(r.max_node_shift, std::abs(x[i] - loaded.x[i]));
+    loaded.x = x;
+    r.nipple = {x[3 * nipple], x[3 * nipple + 1], x[3 * nipple + 2]};
+    meshes::write_msh22(loaded, {{generated::tag("base"), "base"}, {generated::tag("skin"), "skin"},
+                                 {generated::tag("symmetry"), "symmetry"}},
+                        dir.path() / "reference.msh");
+  }
+  MPI_Bcast(r.nipple.data(), 3, MPI_DOUBLE, 0, comm);
+  MPI_Bcast(&r.max_node_shift, 1, MPI_DOUBLE, 0, comm);
+  write_text(dir.path() / "case.reference.toml", reference_case(c, r.nipple).to_toml(), comm);
+  write_json(dir.path() / "summary.json", to_json(r), comm);
+  dir.commit();
+  return r;
+}
+
+std::string neutral_state_table(const NeutralStateResult& r)
+{
+  std::string s = fmt::format("neutral state of the shape recorded {} (theta {} deg): {} iterations, "
+                              "{:.1f} s\n",
+                              r.posture.name, r.posture.theta_deg, r.inverse.iterations.size(),
+                              r.inverse.seconds);
+  for (std::size_t k = 0; k < r.inverse.iterations.size(); ++k)
+  {
+    const auto& i = r.inverse.iterations[k];
+    s += fmt::format("  {:>3}  mismatch RMS {:10.4g} mm  max {:10.4g} mm  omega {:.3f}  Newton {}\n", k,
+                     1e3 * i.rms_mismatch, 1e3 * i.max_mismatch, i.omega, i.newton_iterations);
+  }
+  s += fmt::format("nipple in the neutral state: ({:.2f}, {:.2f}, {:.2f}) mm; largest node shift {:.2f} mm\n",
+                   1e3 * r.nipple[0], 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.max_node_shift);
+  return s;
+}
+} // namespace breastsim

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# `breastsim neutral-state`: the cap taken as a shape recorded standing; its
+# stress-free reference, simulated standing, must reproduce the cap (nipple,
+# lowest point, projection within 1e-6 m); bad options leave no output.
+# Usage: neutral_state.sh BREASTSIM CASES_DIR
+set -eu
+BIN="$1"; CASES="$2"
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+"$BIN" -q neutral-state "$CASES/default.toml" --set geometry.mesh_size=0.012 --posture standing \
+  --out neutral >neutral.log
+for f in reference.msh case.reference.toml summary.json; do
+  [ -s "neutral/$f" ] || { echo "FAIL: neutral/$f missing"; exit 1; }
+done
+"$BIN" -q simulate neutral/case.reference.toml --set postures.names=standing --out forward >forward.log
+python3 - <<'PY'
+import json, sys
+ns = json.load(open("neutral/summary.json"))
+p = json.load(open("forward/summary.json"))["postures"][0]
+n, zmin, proj = p["nipple_m"], p["z_min_m"], p["projection_m"]
+err = max(abs(n[0]), abs(n[1] - 0.06), abs(n[2]), abs(zmin + 0.07), abs(proj - 0.06))
+print(f"neutral state: {len(ns['iterations'])} iterations, {ns['wall_time_s']:.2f} s, node shift "
+      f"{1e3 * ns['max_node_shift_m']:.2f} mm; forward from it: nipple {[round(1e3 * v, 4) for v in n]} mm, "
+      f"largest error {err:.2e} m")
+if not ns["converged"] or ns["max_node_shift_m"] < 0.01 or err > 1e-6:
+    sys.exit("FAIL: the reference does not reproduce the recorded shape")
+PY
+refuse() { # NAME MESSAGE ARGS...: exit 2, the message, no output folder
+  local name="$1" msg="$2"; shift 2
+  if "$BIN" -q neutral-state "$CASES/default.toml" "$@" --out "bad_$name" >"$name.log" 2>&1; then
+    echo "FAIL: $name accepted"; exit 1; fi
+  grep -q -- "$msg" "$name.log" || { echo "FAIL: $name: no '$msg' in:"; cat "$name.log"; exit 1; }
+  [ ! -e "bad_$name" ] || { echo "FAIL: $name left output"; exit 1; }
+}
+refuse tolerance "--tolerance = 1 is out of range" --tolerance 1
+refuse theta "--theta = 200 is out of range" --theta 200
+refuse iterations "--max-iterations = 0 is out of range" --max-iterations 0
+refuse nipple "'geometry.nipple_z' = 0.01 needs geometry.mesh_file" --set geometry.nipple_z=0.01
+echo "neutral_state: ok"
