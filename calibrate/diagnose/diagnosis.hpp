@@ -36,7 +36,7 @@ struct DiagnoseOptions
   /// Refinement check: an accepted term's LR must stay above the critical
   /// value on the mesh `mesh_ratio` times finer and extrapolated to the
   /// continuum (evidence.hpp, continuum_lr) with this order (0: off).
-  double refinement_order = 2.0;
+  double refinement_order = 1.5;
   /// Held-out postures: an accepted term must improve the linearised
   /// prediction of the postures it was not fitted on (sum of chi2 gains > 0).
   bool held_out_check = true;
