@@ -19,6 +19,7 @@ Command add_sweep_command(CLI::App& root)
     std::string case_file, petsc_options;
     OutputOption out;
     std::vector<std::string> sets, vary;
+    int ranks_per_case = 0;
   };
   auto o = std::make_shared<Options>();
   auto* app = root.add_subcommand("sweep", "run the surgery over a grid of incision parameters");
@@ -30,6 +31,11 @@ Command add_sweep_command(CLI::App& root)
   app->add_option("--set", o->sets, "override a case key (repeatable)")->allow_extra_args(false);
   add_output_option(app, o->out, "output folder (default results/<case.name>-sweep)");
   app->add_option("--petsc-options", o->petsc_options, "PETSc options passed through");
+  app->add_option("--ranks-per-case", o->ranks_per_case,
+                  "MPI ranks per surgery: the ranks split into groups of this many, each solving "
+                  "its share of the grid (0: all ranks on each surgery in turn; must divide the "
+                  "number of ranks; with -v the Newton tables of rank 0's group only)")
+      ->capture_default_str();
   return {app, [o]()
           {
             Config c = load_case(o->case_file, o->sets);
@@ -46,7 +52,7 @@ Command add_sweep_command(CLI::App& root)
             check_sweep_request(c, grid);
             const auto out = claim_output(o->out, "results/" + CaseOptions::from(c).name + "-sweep",
                                           {o->case_file});
-            auto rows = sweep(c, grid, out, MPI_COMM_WORLD);
+            auto rows = sweep(c, grid, out, MPI_COMM_WORLD, o->ranks_per_case);
             if (log::is_root() && spdlog::should_log(spdlog::level::debug)) // -v
               for (const auto& row : rows)
                 std::cout << newton_tables(row.pre, sweep_label(row) + ", pre-operative: ")

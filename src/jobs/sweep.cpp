@@ -1,7 +1,9 @@
 #include "sweep.hpp"
 #include "model_setup.hpp"
 #include "neutral_mesh.hpp"
+#include "case_groups.hpp"
 #include "errors.hpp"
+#include "on_root.hpp"
 #include "log.hpp"
 #include "output.hpp"
 #include "timer.hpp"
@@ -89,7 +91,7 @@ nlohmann::json to_json(const SweepRow& r)
   for (const auto& [k, v] : r.parameters)
     std::visit([&](const auto& x) { params[k] = x; }, v);
   nlohmann::json j = {{"parameters", params}, {"ok", r.ok}, {"wall_time_s", r.seconds}};
-  if (!r.ok)
+  if (!r.ok || r.error.size())
   {
     j["error"] = r.error;
     return j;
@@ -99,6 +101,102 @@ nlohmann::json to_json(const SweepRow& r)
             {"lower_pole_ratio", r.lower_pole_ratio}, {"max_suture_gap_m", r.max_gap},
             {"newton_iterations", r.newton_iterations}});
   return j;
+}
+
+/// A row from its JSON (to_json), the parameters typed by their keys.
+SweepRow row_from_json(const nlohmann::json& j)
+{
+  SweepRow r;
+  for (const auto& [k, v] : j.at("parameters").items())
+    switch (key_info(k).type)
+    {
+    case KeyType::integer: r.parameters[k] = v.get<std::int64_t>(); break;
+    case KeyType::boolean: r.parameters[k] = v.get<bool>(); break;
+    default: r.parameters[k] = v.get<double>();
+    }
+  r.ok = j.at("ok").get<bool>();
+  r.seconds = j.at("wall_time_s").get<double>();
+  if (!r.ok)
+  {
+    r.error = j.at("error").get<std::string>();
+    return r;
+  }
+  r.resected_volume = j.at("resected_volume_m3").get<double>();
+  r.nipple = j.at("nipple_standing_m").get<std::array<double, 3>>();
+  r.projection = j.at("projection_standing_m").get<double>();
+  r.z_min = j.at("z_min_standing_m").get<double>();
+  r.lower_pole_ratio = j.at("lower_pole_ratio").get<double>();
+  r.max_gap = j.at("max_suture_gap_m").get<double>();
+  r.newton_iterations = j.at("newton_iterations").get<int>();
+  return r;
+}
+
+std::string csv_table(const std::vector<SweepRow>& rows)
+{
+  std::string csv;
+  for (const auto& [k, v] : rows.front().parameters)
+    csv += k + ",";
+  csv += "ok,resected_volume_cm3,nipple_y_mm,nipple_z_mm,projection_mm,z_min_mm,lower_pole_ratio,"
+         "max_gap_mm,newton_iterations,wall_time_s\n";
+  for (const auto& r : rows)
+  {
+    for (const auto& [k, v] : r.parameters)
+      csv += plain_text(v) + ",";
+    csv += fmt::format("{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.5f},{},{:.2f}\n", r.ok ? 1 : 0,
+                       1e6 * r.resected_volume, 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.projection,
+                       1e3 * r.z_min, r.lower_pole_ratio, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
+  }
+  return csv;
+}
+
+/// Every combination of the grid: its values and folder label.
+std::vector<std::pair<std::map<std::string, Value>, std::string>> combinations(const SweepGrid& grid)
+{
+  std::vector<std::pair<std::map<std::string, Value>, std::string>> out;
+  std::vector<std::size_t> idx(grid.size(), 0);
+  while (true)
+  {
+    std::map<std::string, Value> values;
+    std::string label;
+    for (std::size_t i = 0; i < grid.size(); ++i)
+    {
+      values[grid[i].first] = grid[i].second[idx[i]];
+      label += fmt::format("{}{}={}", label.empty() ? "" : "_", grid[i].first,
+                           plain_text(grid[i].second[idx[i]]));
+    }
+    out.emplace_back(std::move(values), std::move(label));
+    std::size_t i = 0;
+    while (i < grid.size() && ++idx[i] == grid[i].second.size())
+      idx[i++] = 0;
+    if (i == grid.size())
+      return out;
+  }
+}
+
+/// Each combination solved by its group of ranks; the rows on rank 0 of the
+/// whole communicator (with the Newton records of the rows its own group
+/// solved), all rows on every rank when there is one group.
+std::vector<SweepRow> run_all(const Config& base, const SweepGrid& grid, const std::filesystem::path& dir,
+                              const CaseGroups& groups)
+{
+  const auto combos = combinations(grid);
+  std::vector<SweepRow> mine(combos.size());
+  std::vector<std::string> texts(combos.size());
+  for (std::size_t i = 0; i < combos.size(); ++i)
+    if (groups.runs(i))
+    {
+      log::info("sweep: {} (group {} of {})", combos[i].second, groups.group() + 1, groups.groups());
+      mine[i] = run_one(base, combos[i].first, dir / combos[i].second, groups.comm());
+      if (rank_of(groups.comm()) == 0)
+        texts[i] = to_json(mine[i]).dump();
+    }
+  if (groups.groups() == 1)
+    return mine;
+  const std::vector<std::string> all = groups.gather(texts, combos.size());
+  std::vector<SweepRow> rows;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    rows.push_back(groups.runs(i) ? std::move(mine[i]) : row_from_json(nlohmann::json::parse(all[i])));
+  return rows;
 }
 } // namespace
 
@@ -116,50 +214,25 @@ void check_sweep_request(const Config& base, const SweepGrid& grid)
 }
 
 std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const OutputTarget& out,
-                            MPI_Comm comm)
+                            MPI_Comm comm, int ranks_per_case)
 {
   check_sweep_request(base, grid);
   HalfCapSpec::from(base).require_parametric_cap("sweep (the incision cuts the cap)");
+  const CaseGroups groups(comm, ranks_per_case, "--ranks-per-case");
   OutputDir dir(out, comm);
-  std::vector<SweepRow> rows;
-  std::vector<std::size_t> idx(grid.size(), 0);
-  while (true)
-  {
-    std::map<std::string, Value> values;
-    std::string label;
-    for (std::size_t i = 0; i < grid.size(); ++i)
-    {
-      values[grid[i].first] = grid[i].second[idx[i]];
-      label += fmt::format("{}{}={}", label.empty() ? "" : "_", grid[i].first,
-                           plain_text(grid[i].second[idx[i]]));
-    }
-    log::info("sweep: {}", label);
-    rows.push_back(run_one(base, values, dir.path() / label, comm));
-    std::size_t i = 0;
-    while (i < grid.size() && ++idx[i] == grid[i].second.size())
-      idx[i++] = 0;
-    if (i == grid.size())
-      break;
-  }
+  const std::vector<SweepRow> rows = run_all(base, grid, dir.path(), groups);
+  // The table files (written by rank 0, which holds every row).
   nlohmann::json j = nlohmann::json::array();
-  for (const auto& r : rows)
-    j.push_back(to_json(r));
-  write_json(dir.path() / "sweep.json", j, comm);
   std::string csv;
-  for (const auto& [k, v] : rows.front().parameters)
-    csv += k + ",";
-  csv += "ok,resected_volume_cm3,nipple_y_mm,nipple_z_mm,projection_mm,z_min_mm,lower_pole_ratio,"
-         "max_gap_mm,newton_iterations,wall_time_s\n";
-  for (const auto& r : rows)
+  if (!rows.empty())
   {
-    for (const auto& [k, v] : r.parameters)
-      csv += plain_text(v) + ",";
-    csv += fmt::format("{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.5f},{},{:.2f}\n", r.ok ? 1 : 0,
-                       1e6 * r.resected_volume, 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.projection,
-                       1e3 * r.z_min, r.lower_pole_ratio, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
+    for (const auto& r : rows)
+      j.push_back(to_json(r));
+    csv = csv_table(rows);
   }
+  write_json(dir.path() / "sweep.json", j, comm);
   write_text(dir.path() / "sweep.csv", csv, comm);
-  write_text(dir.path() / "sweep.txt", sweep_table(rows), comm);
+  write_text(dir.path() / "sweep.txt", rows.empty() ? std::string() : sweep_table(rows), comm);
   dir.commit();
   return rows;
 }

@@ -38,8 +38,11 @@ using SweepGrid = std::vector<std::pair<std::string, std::vector<Value>>>;
 /// <out>/sweep.json and sweep.csv.
 /// InputError unless the grid has values and the postures include standing.
 void check_sweep_request(const Config& base, const SweepGrid& grid);
+/// `ranks_per_case` K: the ranks of `comm` split into groups of K, each
+/// solving its share of the combinations (0: all ranks on each, in turn);
+/// the table is complete on rank 0.
 std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const OutputTarget& out,
-                            MPI_Comm comm);
+                            MPI_Comm comm, int ranks_per_case = 0);
 std::string sweep_table(const std::vector<SweepRow>& rows);
 /// "key=value, ..." of a row's parameters.
 std::string sweep_label(const SweepRow& row);
