@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
-#include <limits>
 
 namespace breastsim
 {
@@ -52,26 +51,6 @@ std::vector<double> gather_nodes(const dolfinx::mesh::Mesh& mesh, std::size_t nu
   return x;
 }
 
-/// The node of `m` at the nipple `p` (root rank); InputError if none is
-/// within 1e-6 of the mesh's extent.
-std::size_t nipple_node(const meshes::TaggedMesh& m, const std::array<double, 3>& p)
-{
-  std::size_t best = 0;
-  double best_d = std::numeric_limits<double>::infinity(), extent = 0;
-  for (std::size_t n = 0; n < m.num_nodes(); ++n)
-  {
-    const double d = std::hypot(m.x[3 * n] - p[0], m.x[3 * n + 1] - p[1], m.x[3 * n + 2] - p[2]);
-    extent = std::max({extent, std::abs(m.x[3 * n]), std::abs(m.x[3 * n + 1]), std::abs(m.x[3 * n + 2])});
-    if (d < best_d)
-      std::tie(best, best_d) = std::make_pair(n, d);
-  }
-  if (!(best_d <= 1e-6 * extent))
-    throw InputError(fmt::format("no mesh node at the nipple (0, geometry.H = {:.6g}, geometry.nipple_z "
-                                 "= {:.6g}): set them to the nipple node of the recorded shape",
-                                 p[1], p[2]));
-  return best;
-}
-
 /// The case of the reference: its mesh file and nipple.
 Config reference_case(const Config& c, const std::array<double, 3>& nipple)
 {
@@ -104,7 +83,8 @@ NeutralStateResult neutral_state(const Config& c, const Posture& posture, const 
   std::size_t nipple = 0;
   on_root(comm, [&] { // every rank throws rank 0's InputError
     loaded = root_mesh(co.geometry);
-    nipple = nipple_node(loaded, co.geometry.nipple());
+    nipple = nipple_node(loaded, co.geometry.mesh_file.empty() ? "the cap" : co.geometry.mesh_file,
+                         co.geometry.nipple());
   });
   Model model(to_dolfinx(comm, loaded, co.geometry.order), Constraints{true, co.fixed_base});
   apply_parameters(c, model);

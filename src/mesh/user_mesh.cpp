@@ -203,10 +203,7 @@ TaggedMesh read_user_mesh(const std::filesystem::path& path, int order, const Us
 
 namespace breastsim
 {
-namespace
-{
-/// Throws InputError unless a skin node of `m` lies at `nipple`.
-void check_nipple_node(const meshes::TaggedMesh& m, const std::filesystem::path& path,
+std::size_t nipple_node(const meshes::TaggedMesh& m, const std::filesystem::path& path,
                        const std::array<double, 3>& nipple)
 {
   double extent = 0, top = -1;
@@ -223,7 +220,7 @@ void check_nipple_node(const meshes::TaggedMesh& m, const std::filesystem::path&
     {
       const double* p = &m.x[3 * m.facets[f * npf + k]];
       if (std::hypot(p[0] - nipple[0], p[1] - nipple[1], p[2] - nipple[2]) <= 1e-6 * extent)
-        return;
+        return m.facets[f * npf + k];
     }
   throw InputError(fmt::format("geometry.mesh_file = '{}': no skin node at the nipple (0, geometry.H "
                                "= {:.6g}, geometry.nipple_z = {:.6g}), where the observables are read; "
@@ -231,7 +228,6 @@ void check_nipple_node(const meshes::TaggedMesh& m, const std::filesystem::path&
                                "highest node on x = 0 is at y = {:.6g})",
                                path.string(), nipple[1], nipple[2], top));
 }
-} // namespace
 
 TaggedDolfinxMesh load_user_mesh(const std::filesystem::path& path, int order, MPI_Comm comm,
                                  const std::optional<std::array<double, 3>>& nipple)
@@ -244,7 +240,7 @@ TaggedDolfinxMesh load_user_mesh(const std::filesystem::path& path, int order, M
             m = meshes::read_user_mesh(
                 path, order, {generated::tag("base"), generated::tag("skin"), generated::tag("symmetry")});
             if (nipple)
-              check_nipple_node(m, path, *nipple);
+              nipple_node(m, path, *nipple);
           });
   return to_dolfinx(comm, m, order);
 }

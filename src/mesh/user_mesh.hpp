@@ -44,6 +44,11 @@ TaggedMesh read_user_mesh(const std::filesystem::path& path, int order, const Us
 
 namespace breastsim
 {
+/// The skin node of `m` at `nipple` (within 1e-6 of the mesh's extent; one
+/// rank); InputError naming `path` and the highest node on x = 0 if none.
+std::size_t nipple_node(const meshes::TaggedMesh& m, const std::filesystem::path& path,
+                        const std::array<double, 3>& nipple);
+
 /// Collective: rank 0 reads `path` (read_user_mesh with the registry's tags
 /// base, skin, symmetry), every rank throws its InputError, and the mesh is
 /// distributed as build_neutral_mesh's half cap is. With `nipple`, the point
