@@ -38,18 +38,36 @@ bool host_header_allowed(const std::string& host, int port)
   return name == "127.0.0.1" || name == "localhost" || name == "[::1]";
 }
 
+/// A page's file with a validator (size and modification time): the
+/// browser revalidates it on each load (304 while unchanged), which also
+/// lets it keep the compiled code of three.js.
+void reply_static(const httplib::Request& req, httplib::Response& res)
+{
+  const auto f = static_file(req.path);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(f->file, ec);
+  const auto time = std::filesystem::last_write_time(f->file, ec);
+  std::ifstream in(f->file, std::ios::binary);
+  if (ec || !in)
+    return reply_error(res, 404, "the page's file " + f->file.filename().string() + " is missing");
+  const std::string etag = fmt::format("\"{:x}-{:x}\"", size, static_cast<std::uint64_t>(time.time_since_epoch().count()));
+  res.headers.erase("Cache-Control");
+  res.set_header("Cache-Control", "no-cache");
+  res.set_header("ETag", etag);
+  if (req.get_header_value("If-None-Match") == etag)
+  {
+    res.status = 304;
+    return;
+  }
+  std::ostringstream s;
+  s << in.rdbuf();
+  reply_bytes(res, s.str(), f->mime);
+}
+
 void add_static_routes(httplib::Server& server)
 {
   for (const auto& url : static_urls())
-    server.Get(url, [](const httplib::Request& req, httplib::Response& res) {
-      const auto f = static_file(req.path);
-      std::ifstream in(f->file, std::ios::binary);
-      if (!in)
-        return reply_error(res, 404, "the page's file " + f->file.filename().string() + " is missing");
-      std::ostringstream s;
-      s << in.rdbuf();
-      res.set_content(s.str(), f->mime.c_str());
-    });
+    server.Get(url, reply_static);
 }
 
 void add_plan_routes(httplib::Server& server)
@@ -76,6 +94,7 @@ void configure(httplib::Server& server, const ServeOptions& o, const int& port)
   server.set_payload_max_length(o.max_body);
   server.set_read_timeout(5, 0);
   server.set_write_timeout(5, 0);
+  server.set_tcp_nodelay(true); // a reply's headers and body leave at once (no 40 ms delayed ACK)
   server.set_keep_alive_max_count(20);
   server.set_keep_alive_timeout(2);
   server.set_default_headers({{"X-Content-Type-Options", "nosniff"},
@@ -98,7 +117,7 @@ void configure(httplib::Server& server, const ServeOptions& o, const int& port)
   });
   server.set_error_handler(httplib::Server::HandlerWithResponse(
       [](const httplib::Request&, httplib::Response& res) {
-    if (res.body.empty())
+    if (!has_body(res))
       reply_error(res, res.status, res.status == 413 ? "the request body is too large"
                                    : res.status == 404 ? "not found"
                                                        : "request refused (HTTP " + std::to_string(res.status) + ")");

@@ -100,8 +100,8 @@ void add_job_routes(httplib::Server& server, JobStore& store, JobQueue& queue)
     const auto r = store.get(id);
     if (!r || r->state != JobState::done)
       return reply_error(res, 404, "no finished job with this id");
-    res.set_content(result_archive(store.folder(id) / "result", "breastsim-" + id, 512u << 20),
-                    "application/x-tar");
+    reply_bytes(res, result_archive(store.folder(id) / "result", "breastsim-" + id, 512u << 20),
+                "application/x-tar");
     res.set_header("Content-Disposition", "attachment; filename=\"breastsim-" + id + ".tar\"");
   });
   server.Get(R"(/api/jobs/([0-9a-f]{16})/files/([A-Za-z0-9_.\-]{1,160}))",
@@ -112,7 +112,7 @@ void add_job_routes(httplib::Server& server, JobStore& store, JobQueue& queue)
                std::ifstream f(file, std::ios::binary);
                std::ostringstream s;
                s << f.rdbuf();
-               res.set_content(s.str(), mime_of(file).c_str());
+               reply_bytes(res, s.str(), mime_of(file));
              });
 }
 } // namespace breastsim::app

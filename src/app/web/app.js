@@ -232,6 +232,15 @@ function showSliderValues() {
   }
 }
 
+// Timings as performance entries: "breastsim:first-view" (the page's panels and
+// the plan drawn), "breastsim:slider-redraw" (a slider's input -> the frame
+// with its planes).
+function redrawn(inputAt) {
+  app.redraws += 1;
+  if (inputAt) app.lastRedrawMs = performance.measure("breastsim:slider-redraw", { start: inputAt }).duration;
+  if (performance.getEntriesByName("breastsim:first-view").length === 0) performance.mark("breastsim:first-view");
+}
+
 let checking = false, recheck = false;
 async function checkIncision() {
   if (checking) { recheck = true; return; }
@@ -251,8 +260,10 @@ async function checkIncision() {
   $("#run").disabled = !canRun("surgery");
   if ($("#view-mode").value === "plan" && R > 0 && H > 0) {
     view.showPlan({ R, H }, state.incisionOk ? r.json : null);
-    app.redraws += 1;
-    if (state.inputAt) app.lastRedrawMs = performance.now() - state.inputAt;
+    const inputAt = state.inputAt;
+    state.inputAt = null;
+    // The next frame shows the plan; the one after it begins once that one is out.
+    requestAnimationFrame(() => requestAnimationFrame(() => redrawn(inputAt)));
   }
   checking = false;
   if (recheck) { recheck = false; checkIncision(); }

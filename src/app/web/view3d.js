@@ -47,6 +47,7 @@ export class View3D {
   }
 
   clear() {
+    this.plan = null;
     for (const o of [...this.content.children]) {
       this.content.remove(o);
       o.traverse((c) => { if (c.geometry) c.geometry.dispose(); if (c.material) c.material.dispose(); });
@@ -55,25 +56,15 @@ export class View3D {
 
   // The neutral cap (R, H) of the full breast; with `incision` (the answer of
   // /api/incision/check) the removed tissue is tinted and the planes and
-  // points drawn.
+  // points drawn. A plan on the same cap is updated in place: the cap's
+  // colours, the planes' corners and the points' positions, no new geometry.
   showPlan(cap, incision) {
-    this.clear();
-    this.content.add(capMesh(cap, incision));
-    if (incision) {
-      for (const [name, p] of Object.entries({ A: incision.A, B: incision.B, C: incision.C, D: incision.D })) {
-        for (const side of p[0] === 0 ? [1] : [1, -1]) {
-          const ball = new THREE.Mesh(new THREE.SphereGeometry(2.5, 16, 12),
-                                      new THREE.MeshBasicMaterial({ color: POINT_COLOURS[name] }));
-          ball.position.copy(toScene([side * p[0], p[1], p[2]]));
-          this.content.add(ball);
-        }
-      }
-      const n1 = incision.P1.normal;
-      this.content.add(planeQuad(n1, incision.P1.offset, cap.R, 0x1e8449));
-      this.content.add(planeQuad([-n1[0], n1[1], n1[2]], incision.P1.offset, cap.R, 0x1e8449));
-      this.content.add(planeQuad(incision.P2.normal, incision.P2.offset, cap.R, 0x7d3c98));
+    if (!this.plan || this.plan.R !== cap.R || this.plan.H !== cap.H) {
+      this.clear();
+      this.plan = new PlanObjects(cap);
+      this.content.add(this.plan.group);
     }
-    this.content.add(baseRing(cap.R));
+    this.plan.update(incision);
     if (!this.framed) this.frame(new THREE.Vector3(1, 0.35, 1.25));
     this.framed = "plan";
     this.render();
@@ -104,10 +95,53 @@ export class View3D {
   }
 }
 
-function capMesh(cap, incision) {
+// The objects of a plan on one cap: the cap (its model points kept for
+// recolouring), the base ring, the planes P1, P1', P2 and the points A-D
+// (with their mirrors), all updated in place by update().
+class PlanObjects {
+  constructor(cap) {
+    this.R = cap.R;
+    this.H = cap.H;
+    this.group = new THREE.Group();
+    [this.cap, this.capPoints] = capMesh(cap);
+    this.group.add(this.cap, baseRing(cap.R));
+    this.planes = [0x1e8449, 0x1e8449, 0x7d3c98].map((c) => planeQuad(c));
+    this.group.add(...this.planes);
+    const ball = new THREE.SphereGeometry(2.5, 16, 12);
+    this.balls = {};
+    for (const name of ["A", "B", "C", "D"]) {
+      const material = new THREE.MeshBasicMaterial({ color: POINT_COLOURS[name] });
+      this.balls[name] = [new THREE.Mesh(ball, material), new THREE.Mesh(ball, material)];
+      this.group.add(...this.balls[name]);
+    }
+  }
+
+  update(incision) {
+    const colour = this.cap.geometry.getAttribute("color");
+    this.capPoints.forEach((p, k) => {
+      const c = incision && removed(incision, p) ? CUT : SKIN;
+      colour.setXYZ(k, c.r, c.g, c.b);
+    });
+    colour.needsUpdate = true;
+    for (const o of [...this.planes, ...Object.values(this.balls).flat()]) o.visible = !!incision;
+    if (!incision) return;
+    for (const [name, [ball, mirror]] of Object.entries(this.balls)) {
+      const p = incision[name];
+      ball.position.copy(toScene(p));
+      mirror.position.copy(toScene([-p[0], p[1], p[2]]));
+      mirror.visible = p[0] !== 0;
+    }
+    const n1 = incision.P1.normal;
+    setPlaneQuad(this.planes[0], n1, incision.P1.offset, this.R);
+    setPlaneQuad(this.planes[1], [-n1[0], n1[1], n1[2]], incision.P1.offset, this.R);
+    setPlaneQuad(this.planes[2], incision.P2.normal, incision.P2.offset, this.R);
+  }
+}
+
+function capMesh(cap) {
   const R = cap.R, H = cap.H, Rs = (R * R + H * H) / (2 * H), yc = H - Rs;
   const amax = Math.acos((Rs - H) / Rs), nA = 40, nB = 96;
-  const pos = [], col = [], idx = [];
+  const pos = [], points = [], idx = [];
   for (let i = 0; i <= nA; i++) {
     const a = (amax * i) / nA;
     for (let j = 0; j <= nB; j++) {
@@ -115,8 +149,7 @@ function capMesh(cap, incision) {
       const p = [Rs * Math.sin(a) * Math.cos(b), yc + Rs * Math.cos(a), Rs * Math.sin(a) * Math.sin(b)];
       const v = toScene(p);
       pos.push(v.x, v.y, v.z);
-      const c = incision && removed(incision, p) ? CUT : SKIN;
-      col.push(c.r, c.g, c.b);
+      points.push(p);
     }
   }
   for (let i = 0; i < nA; i++)
@@ -126,10 +159,10 @@ function capMesh(cap, incision) {
     }
   const g = new THREE.BufferGeometry();
   g.setAttribute("position", new THREE.Float32BufferAttribute(pos, 3));
-  g.setAttribute("color", new THREE.Float32BufferAttribute(col, 3));
+  g.setAttribute("color", new THREE.Float32BufferAttribute(new Float32Array(pos.length), 3));
   g.setIndex(idx);
   g.computeVertexNormals();
-  return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide }));
+  return [new THREE.Mesh(g, new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide })), points];
 }
 
 // In the removed tissue: beyond P1 (or its mirror) or beyond P2 (n . p < offset).
@@ -139,17 +172,27 @@ function removed(inc, p) {
   return dot(inc.P1.normal) < inc.P1.offset || dot(inc.P2.normal) < inc.P2.offset;
 }
 
-function planeQuad(n, offset, R, colour) {
+function planeQuad(colour) {
+  const g = new THREE.BufferGeometry();
+  g.setAttribute("position", new THREE.Float32BufferAttribute(new Float32Array(12), 3));
+  g.setIndex([0, 1, 2, 0, 2, 3]);
+  return new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: colour, transparent: true, opacity: 0.18,
+                                                          side: THREE.DoubleSide, depthWrite: false }));
+}
+
+// The square of side 2R on the plane n . x = offset, centred at offset n.
+function setPlaneQuad(quad, n, offset, R) {
   const normal = new THREE.Vector3(n[0], n[1], n[2]).normalize();
   const centre = normal.clone().multiplyScalar(offset);
   const helper = Math.abs(normal.x) < 0.9 ? new THREE.Vector3(1, 0, 0) : new THREE.Vector3(0, 1, 0);
   const u = new THREE.Vector3().crossVectors(normal, helper).normalize(), v = new THREE.Vector3().crossVectors(normal, u);
-  const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([a, b]) =>
-    toScene(centre.clone().addScaledVector(u, a * R).addScaledVector(v, b * R).toArray()));
-  const g = new THREE.BufferGeometry().setFromPoints(corners);
-  g.setIndex([0, 1, 2, 0, 2, 3]);
-  return new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: colour, transparent: true, opacity: 0.18,
-                                                          side: THREE.DoubleSide, depthWrite: false }));
+  const position = quad.geometry.getAttribute("position");
+  [[-1, -1], [1, -1], [1, 1], [-1, 1]].forEach(([a, b], k) => {
+    const c = toScene(centre.clone().addScaledVector(u, a * R).addScaledVector(v, b * R).toArray());
+    position.setXYZ(k, c.x, c.y, c.z);
+  });
+  position.needsUpdate = true;
+  quad.geometry.computeBoundingSphere();
 }
 
 function baseRing(R) {
