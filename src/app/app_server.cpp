@@ -4,6 +4,7 @@
 #include "http_reply.hpp"
 #include "job_api.hpp"
 #include "plan_api.hpp"
+#include "report_api.hpp"
 #include "request_pool.hpp"
 #include "static_files.hpp"
 #include <fmt/format.h>
@@ -162,6 +163,7 @@ int serve(const ServeOptions& o)
   add_static_routes(server);
   add_plan_routes(server);
   add_job_routes(server, store, queue);
+  add_report_routes(server, store);
   const std::string shown = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
   std::cout << fmt::format("breastsim serve: listening on http://{}:{}/ (data {}, {} worker{})", shown,
                            port, data.string(), o.workers, o.workers == 1 ? "" : "s")

@@ -19,6 +19,8 @@ std::string mime_of(const fs::path& p)
     return "text/html; charset=utf-8";
   if (ext == ".png")
     return "image/png";
+  if (ext == ".csv")
+    return "text/csv; charset=utf-8";
   return "text/plain; charset=utf-8";
 }
 

@@ -32,12 +32,32 @@ JobProgress calibration_progress(std::size_t max_evals, const std::string& log)
   p.fraction = std::min(0.95, evals / static_cast<double>(std::max<std::size_t>(max_evals, 1)));
   return p;
 }
+
+/// Combinations of a sweep started ("sweep: <label> (group ...)") over their number.
+JobProgress sweep_progress(std::size_t combinations, const std::string& log)
+{
+  JobProgress p;
+  std::istringstream in(log);
+  std::string line;
+  double started = 0;
+  while (std::getline(in, line))
+    if (!line.empty())
+    {
+      p.stage = message_of(line);
+      if (p.stage.rfind("sweep: ", 0) == 0 && has(line, "(group "))
+        started += 1;
+    }
+  p.fraction = std::min(0.99, std::max(0.0, started - 1) / static_cast<double>(std::max<std::size_t>(combinations, 1)));
+  return p;
+}
 } // namespace
 
 JobProgress progress_from_log(const std::string& kind, std::size_t steps, const std::string& log)
 {
   if (kind == "calibrate")
     return calibration_progress(steps, log);
+  if (kind == "sweep")
+    return sweep_progress(steps, log);
   const std::size_t postures = steps;
   const bool surgery = kind == "surgery";
   // Stages: meshing, each posture (twice for surgery, with the sutures

@@ -14,7 +14,8 @@ struct JobProgress
   std::string stage;
 };
 
-/// `kind`: simulate | surgery | calibrate; `steps`: the postures per stage of
-/// the case, or the calibration's largest number of evaluations.
+/// `kind`: simulate | surgery | calibrate | sweep; `steps`: the postures per
+/// stage of the case, the calibration's largest number of evaluations, or
+/// the sweep's number of combinations (one stage each).
 JobProgress progress_from_log(const std::string& kind, std::size_t steps, const std::string& log);
 } // namespace breastsim::app

@@ -5,6 +5,7 @@
 #include "log.hpp"
 #include "output_target.hpp"
 #include "result_summary.hpp"
+#include "sweep_request.hpp"
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -185,6 +186,7 @@ void JobQueue::refresh_progress(const std::string& id, const JobRecord& r)
   try
   {
     const std::size_t steps = r.kind == "calibrate" ? r.options.value("max_evals", 1)
+                              : r.kind == "sweep"   ? sweep_size(r.options.at("vary"))
                                                     : posture_count(case_from_overrides(r.overrides));
     const auto p = progress_from_log(r.kind, steps, read_text(_store.folder(id) / "log.txt"));
     _store.update(id, [&](JobRecord& rec) {

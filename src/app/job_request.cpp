@@ -4,6 +4,7 @@
 #include "fit_parameters.hpp"
 #include "measurements.hpp"
 #include "plan_api.hpp"
+#include "sweep_request.hpp"
 #include <set>
 
 namespace breastsim::app
@@ -45,8 +46,8 @@ nlohmann::json checked_job_request(const nlohmann::json& body)
   if (!body.is_object())
     throw InputError("the job request must be a JSON object {\"kind\": ..., \"overrides\": {...}}");
   const auto kind = body.value("kind", nlohmann::json());
-  if (kind != "simulate" && kind != "surgery" && kind != "calibrate")
-    throw InputError("kind = " + kind.dump().substr(0, 40) + ": allowed simulate, surgery, calibrate");
+  if (kind != "simulate" && kind != "surgery" && kind != "calibrate" && kind != "sweep")
+    throw InputError("kind = " + kind.dump().substr(0, 40) + ": allowed simulate, surgery, calibrate, sweep");
   nlohmann::json request = body;
   if (!request.contains("overrides"))
     request["overrides"] = nlohmann::json::object();
@@ -54,6 +55,13 @@ nlohmann::json checked_job_request(const nlohmann::json& body)
   {
     check_fields(body, {"kind", "overrides", "measurements", "fit", "max_evals"}, "calibrate");
     check_calibration(request);
+    return request;
+  }
+  if (kind == "sweep")
+  {
+    check_fields(body, {"kind", "overrides", "vary"}, "sweep");
+    incision_document(request["overrides"]); // the plan swept around must exist
+    sweep_grid(request.value("vary", nlohmann::json()), case_from_overrides(request["overrides"]));
     return request;
   }
   check_fields(body, {"kind", "overrides"}, kind);

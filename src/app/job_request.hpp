@@ -3,6 +3,7 @@
 //   {"kind": "simulate" | "surgery", "overrides": {key: value}}
 //   {"kind": "calibrate", "overrides": {...}, "measurements": {document},
 //    "fit": "mu,c", "max_evals": 40}
+//   {"kind": "sweep", "overrides": {...}, "vary": {"a": [...], "h": [...]}}
 // with the library's checks and messages (case keys, the incision on the
 // cap, the measurements as `calibrate` reads them, the --fit names).
 #include "calibrate_request.hpp"

@@ -7,6 +7,7 @@
 #include "job_request.hpp"
 #include "simulate.hpp"
 #include "surgery.hpp"
+#include "sweep_request.hpp"
 #include <csignal>
 #include <fstream>
 #include <spdlog/sinks/basic_file_sink.h>
@@ -70,8 +71,10 @@ void run(const fs::path& folder)
     surgery(c, target, MPI_COMM_WORLD);
   else if (kind == "simulate")
     simulate(c, target, MPI_COMM_WORLD);
+  else if (kind == "sweep")
+    sweep(c, sweep_grid(request.at("vary"), c), target, MPI_COMM_WORLD);
   else
-    throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate");
+    throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate, sweep");
 }
 } // namespace
 

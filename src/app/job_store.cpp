@@ -72,7 +72,7 @@ JobRecord JobStore::create(const nlohmann::json& request)
   JobRecord r;
   r.kind = request.at("kind");
   r.overrides = request.value("overrides", nlohmann::json::object());
-  for (const char* option : {"fit", "max_evals"})
+  for (const char* option : {"fit", "max_evals", "vary"})
     if (request.contains(option))
       r.options[option] = request.at(option);
   r.created = utc_now();

@@ -103,6 +103,34 @@ nlohmann::json summarize_calibration(const fs::path& dir)
           {"warnings", rep.value("warnings", nlohmann::json::array())}};
 }
 
+/// The rows of a sweep (sweep.json) in the app's units, the varied keys in the
+/// order of the request.
+nlohmann::json summarize_sweep(const Config& c, const fs::path& dir)
+{
+  const double rho = c.number(calibration::fit_alias("rho").key);
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& r : read_json(dir / "sweep.json"))
+  {
+    nlohmann::json row = {{"parameters", r.at("parameters")}, {"ok", r.at("ok")}};
+    if (!r.at("ok").get<bool>())
+    {
+      row["error"] = r.value("error", "");
+      rows.push_back(row);
+      continue;
+    }
+    const double v = r.at("resected_volume_m3"), gap = r.at("max_suture_gap_m");
+    const auto n = r.at("nipple_standing_m").get<std::array<double, 3>>();
+    row.update({{"resected_volume_cm3", 1e6 * v}, {"resected_weight_g", 1e3 * v * rho},
+                {"nipple_mm", {1e3 * n[0], 1e3 * n[1], 1e3 * n[2]}}, {"nipple_to_base_mm", 1e3 * n[1]},
+                {"projection_mm", 1e3 * r.at("projection_standing_m").get<double>()},
+                {"z_min_mm", 1e3 * r.at("z_min_standing_m").get<double>()},
+                {"lower_pole_height_share", r.at("lower_pole_ratio")}, {"max_suture_gap_mm", 1e3 * gap},
+                {"wall_time_s", r.at("wall_time_s")}});
+    rows.push_back(row);
+  }
+  return {{"kind", "sweep"}, {"ideal", ideals()}, {"rows", rows}};
+}
+
 nlohmann::json summarize_simulation(const fs::path& dir, const nlohmann::json& s)
 {
   nlohmann::json j = {{"kind", "simulate"}, {"ideal", ideals()}, {"postures", nlohmann::json::array()}};
@@ -140,6 +168,8 @@ nlohmann::json summarize_result(const std::string& kind, const Config& c, const 
 {
   if (kind == "calibrate")
     return summarize_calibration(dir);
+  if (kind == "sweep")
+    return summarize_sweep(c, dir);
   const auto s = read_json(dir / "summary.json");
   return kind == "surgery" ? summarize_surgery(c, dir, s) : summarize_simulation(dir, s);
 }
@@ -152,7 +182,7 @@ std::map<std::string, std::string> result_files(const fs::path& job_folder)
   {
     const fs::path rel = f.get<std::string>();
     const auto ext = rel.extension().string();
-    if (ext != ".json" && ext != ".toml" && ext != ".html" && ext != ".png" && ext != ".txt")
+    if (ext != ".json" && ext != ".toml" && ext != ".html" && ext != ".png" && ext != ".txt" && ext != ".csv")
       continue;
     std::string name = rel.generic_string();
     for (auto& ch : name)

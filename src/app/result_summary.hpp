@@ -38,6 +38,6 @@ struct PoleVolumes
 PoleVolumes pole_volumes(const nlohmann::json& surface, double z_nipple);
 /// Files of the result folder (as listed in its marker) the API serves:
 /// public name (path with '/' -> '_') -> path relative to the job folder.
-/// JSON, TOML, HTML, PNG and text files only.
+/// JSON, TOML, HTML, PNG, CSV and text files only.
 std::map<std::string, std::string> result_files(const std::filesystem::path& job_folder);
 } // namespace breastsim::app

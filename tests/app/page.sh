@@ -18,5 +18,5 @@ for _ in $(seq 1 100); do
   sleep 0.1
 done
 [ -n "$port" ] || { cat "$work/serve.out"; exit 1; }
-NODE_PATH="$MODULES" node "$HERE/page_test.js" "http://127.0.0.1:$port/" "$CASES/measurements_example.json" "$shots"
+NODE_PATH="$MODULES" node "$HERE/page_test.js" "http://127.0.0.1:$port/" "$CASES/measurements_example.json" "$shots" "$BIN"
 echo "screenshots: $shots"

@@ -8,7 +8,7 @@
 // Screenshots of each step into SHOT_DIR; the first view (< 1 s, median of 5
 // loads) and the slider redraw (< 100 ms, median of 9 moves) from the page's
 // performance entries, into SHOT_DIR/timings.json.
-// Usage: node page_test.js URL MEASUREMENTS_JSON SHOT_DIR   (NODE_PATH: playwright-core)
+// Usage: node page_test.js URL MEASUREMENTS_JSON SHOT_DIR BREASTSIM   (NODE_PATH: playwright-core)
 "use strict";
 const fs = require("fs");
 const os = require("os");
@@ -16,7 +16,8 @@ const path = require("path");
 const { chromium } = require("playwright-core");
 
 const CHROMIUM = process.env.BREASTSIM_CHROMIUM || "/usr/bin/chromium";
-const [url, measurements, shots] = process.argv.slice(2);
+const { execFileSync } = require("child_process");
+const [url, measurements, shots, program] = process.argv.slice(2);
 let passed = 0;
 
 function check(ok, what) {
@@ -52,6 +53,65 @@ async function firstViews(page, loads) {
     times.push(await page.evaluate(() => performance.getEntriesByName("breastsim:first-view")[0].startTime));
   }
   return times;
+}
+
+// The CLI's `breastsim surgery` on the job's resolved case gives the numbers the page shows.
+async function cliAgrees(page, job, shown) {
+  const toml = await page.evaluate(async (id) => (await fetch(`/api/jobs/${id}/files/case.resolved.toml`)).text(), job.id);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), "breastsim-cli-"));
+  try {
+    fs.writeFileSync(path.join(dir, "case.toml"), toml);
+    execFileSync(program, ["surgery", path.join(dir, "case.toml"), "--out", path.join(dir, "out")], { stdio: "ignore" });
+    const s = JSON.parse(fs.readFileSync(path.join(dir, "out", "summary.json"), "utf8"));
+    const standing = s.postop.find((p) => p.posture === "standing");
+    check((1e6 * s.resected_volume_m3).toFixed(1) === shown.v && (1e3 * standing.nipple_m[1]).toFixed(1) === shown.nb,
+          `the CLI on the job's case gives the page's numbers (${(1e6 * s.resected_volume_m3).toFixed(1)} cm³, ` +
+          `nipple to base ${(1e3 * standing.nipple_m[1]).toFixed(1)} mm)`);
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+// The printable report: pictures from the page, the API's numbers, the fit
+// with its intervals; printed to PDF by the headless Chromium.
+async function report(page, job, mu) {
+  await page.$eval("#export", (e) => e.scrollIntoView());
+  await page.click("#export-report");
+  await page.waitForFunction(() => window.breastsimApp.reports > 0, null, { timeout: 60000 });
+  const href = await page.getAttribute("#report-open", "href");
+  const html = await page.evaluate(async (u) => (await fetch(u)).text(), href);
+  const s = job.summary;
+  check(html.includes(`>${s.resected_volume_cm3.toFixed(1)}</b> cm³`) && html.includes(`>${s.resected_weight_g.toFixed(1)}</b> g`) &&
+        html.includes(`data-key="post_nipple_to_base_mm">${s.postures[0].post.nipple_to_base_mm.toFixed(1)}<`) &&
+        html.includes(`data-key="fitted-mu">${+mu.fitted.toPrecision(4)}<`) && /95 % interval/.test(html) &&
+        (html.match(/<img /g) || []).length === 4 && html.includes(`${(30).toFixed(1)} deg`),
+        "the report holds the API's volume, weight, nipple to base, the plan, the fit with intervals and 4 pictures");
+  const tab = await page.context().newPage();
+  try {
+    await tab.goto(new URL(href, url).href);
+    await tab.screenshot({ path: path.join(shots, "6-report.png"), fullPage: false });
+    const pdf = path.join(shots, "report.pdf");
+    await tab.pdf({ path: pdf, format: "A4", printBackground: true });
+    const head = fs.readFileSync(pdf).subarray(0, 5).toString();
+    check(head === "%PDF-" && fs.statSync(pdf).size > 20000, `the report prints to PDF (${fs.statSync(pdf).size} bytes)`);
+  } finally {
+    await tab.close();
+  }
+}
+
+// A sweep of a and h around the plan: its centre is the surgery just solved.
+async function smallSweep(page, job) {
+  await page.$eval("#compare", (e) => e.scrollIntoView());
+  await page.selectOption("#sweep-first", "incision.a_deg");
+  await page.selectOption("#sweep-second", "incision.h");
+  await page.click("#sweep-run");
+  await page.waitForSelector("#sweep-table", { timeout: 170000 });
+  const centre = await page.$$eval("#sweep-table td.current [data-key]", (es) => es.map((e) => e.textContent));
+  const s = job.summary;
+  const cells = await page.$$eval("#sweep-table td.sweep-cell", (es) => es.length);
+  check(cells === 9 && centre[0] === s.resected_volume_cm3.toFixed(1) && centre[1] === s.postures[0].post.nipple_to_base_mm.toFixed(1),
+        `a 3 x 3 sweep of a and h; its centre equals the surgery (${centre.join(" cm³, ")} mm)`);
+  await page.screenshot({ path: path.join(shots, "5-sweep.png") });
 }
 
 async function walk(page, errors) {
@@ -144,6 +204,10 @@ async function walk(page, errors) {
   await page.selectOption("#view-mode", "overlay");
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, "4-result-overlay.png") });
+
+  await cliAgrees(page, job, shown);
+  await report(page, job, mu);
+  await smallSweep(page, job);
 
   // Reload after the end: the page shows the job's result and its case again.
   await page.reload();

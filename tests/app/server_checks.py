@@ -1,9 +1,9 @@
 """Checks of `breastsim serve` over HTTP, one phase per call (tests/app/server.sh).
 
 Usage: server_checks.py PORT PHASE [ARGS...]
-  refusals                    malformed, unknown, out-of-range, oversized, traversal, CORS, Host
+  refusals                    malformed, unknown, out-of-range, oversized, traversal, CORS, Host, sweeps
   plan                        keys, validate, incision check, measurements check
-  surgery OVERRIDES_JSON OUT  run a surgery job; write its record and summary.json to OUT (JSON)
+  surgery OVERRIDES_JSON OUT  run a surgery job and its report; write its record and summary.json to OUT
   calibrate MEASUREMENTS OUT  refused fit names; a small calibration; its record and report to OUT
   failures                    a failing solve; starts a job and prints its id (to be killed)
   crashed ID FOLDER           the killed job is failed, its staging folder gone, the server up
@@ -67,6 +67,17 @@ def refusals(api):
     check(s == 403, f"a Host header of another machine (DNS rebinding) -> 403 ({s})")
 
 
+def sweep_refusals(api):
+    base = {"kind": "sweep", "overrides": {"geometry.mesh_size": 0.012}}
+    for vary, what in [(None, "vary: an object"), ({"a": [25], "h": [0.02], "d": [0.04]}, "vary: an object"),
+                       ({"tissue.mu": [300, 400]}, "not one of the incision's"), ({"a": [25, 30, 35, 40]}, "1 to 3 numbers"),
+                       ({"a": ["25"]}, "is not a number"), ({"a": [95]}, "incision.a_deg"),
+                       ({"no_such": [1]}, "no_such")]:
+        body = dict(base) if vary is None else {**base, "vary": vary}
+        s, r = api.json("POST", "/api/jobs", body)
+        check(s == 400 and what in r["error"], f"sweep refused: {vary} ({r['error'][:70]})")
+
+
 def plan(api):
     s, r = api.json("GET", "/api/keys")
     keys = {k["key"]: k for k in r["keys"]}
@@ -101,7 +112,37 @@ def surgery(api, overrides, out):
     check(s == 200 and f"breastsim-{r['id']}/summary.json" in names and
           all(n.startswith(f"breastsim-{r['id']}/") and ".." not in n for n in names),
           f"the result folder as one archive ({len(names)} files, {len(tar) >> 10} KiB)")
+    report(api, r["id"], rec)
     json.dump({"record": rec, "summary": json.loads(data)}, open(out, "w"))
+
+
+PNG_1X1 = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNkYPhfDwAChwGA60e6kgAAAABJRU5ErkJggg=="
+
+
+def report(api, job_id, rec):
+    """The printable report of the finished surgery: refused pictures and ids, then one written."""
+    url = f"/api/jobs/{job_id}/report"
+    pic = {"caption": "standing", "png": PNG_1X1}
+    for body, what in [({"pictures": [{"caption": "x", "png": "not base64!"}]}, "pictures[0].png: not base64"),
+                       ({"pictures": [{"caption": "x", "png": "aGVsbG8gd29ybGQ="}]}, "not a PNG file"),
+                       ({"pictures": [pic] * 9}, "at most 8 pictures"),
+                       ({"pictures": [{"caption": "x" * 201, "png": PNG_1X1}]}, "allowed at most 200"),
+                       ({"pictures": [], "calibration": "0123456789abcdef"}, "no finished calibration"),
+                       ({"pictures": [], "calibration": "../../etc"}, "16 hex digits"),
+                       ({"pictures": [], "script": 1}, "unknown field 'script'")]:
+        s, r = api.json("POST", url, body)
+        check(s == 400 and what in r["error"], f"report refused: {what} ({r['error'][:60]})")
+    s, r = api.json("POST", "/api/jobs/0123456789abcdef/report", {"pictures": []})
+    check(s == 404, "a report of a job that does not exist -> 404")
+    s, r = api.json("POST", url, {"pictures": [{"caption": "<script>alert(1)</script> & co", "png": PNG_1X1}],
+                                  "calibration": None})
+    check(s == 200 and r["url"] == f"/api/jobs/{job_id}/files/report.html", f"report written ({r})")
+    s, h, html = api.raw("GET", r["url"])
+    html = html.decode()
+    v = rec["summary"]["resected_volume_cm3"]
+    check(s == 200 and h["Content-Type"].startswith("text/html") and "<script>" not in html and
+          "&lt;script&gt;alert(1)&lt;/script&gt; &amp; co" in html and f">{v:.1f}</b> cm³" in html and
+          "@media print" in html, "the report: the numbers, the caption escaped, print CSS")
 
 
 def calibrate(api, measurements, out):
@@ -199,6 +240,7 @@ if __name__ == "__main__":
     phase = sys.argv[2]
     if phase == "refusals":
         refusals(api)
+        sweep_refusals(api)
     elif phase == "plan":
         plan(api)
     elif phase == "surgery":

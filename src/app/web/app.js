@@ -3,10 +3,12 @@
 // JSON API of `breastsim serve` (docs/APP.md). Every value is checked by the
 // server with the library's messages; the page only adds checks as typed.
 import { View3D, POINT_COLOURS } from "/view3d.js";
+import { reportPictures, usesFit } from "/report.js";
+import { SWEEP_KEYS, sweepRequest, sweepTable } from "/sweep.js";
 
 const $ = (s) => document.querySelector(s);
 const state = { keys: {}, job: null, incisionOk: false, measurements: null, surfaces: {} };
-const app = (window.breastsimApp = { ready: false, lastRedrawMs: null, redraws: 0, errors: [] });
+const app = (window.breastsimApp = { ready: false, lastRedrawMs: null, redraws: 0, reports: 0, errors: [] });
 let view;
 
 async function api(method, path, body) {
@@ -88,8 +90,13 @@ function caseOverrides() {
   return o;
 }
 
-// Show a job's case on the page (a reattached job, a plan picked for comparison).
-function applyOverrides(o) {
+// Show a job's case on the page (a reattached job, a plan picked for
+// comparison: `whole`, its keys without a field on the page replace the kept
+// ones, such as a fitted base.c) or some of its keys (fitted values, a sweep's cell).
+function applyOverrides(o, whole) {
+  const onPage = new Set([...CASE_FIELDS, ...SLIDERS].map(([key]) => key).concat(["postures.names"]));
+  const extra = Object.fromEntries(Object.entries(o).filter(([key]) => !onPage.has(key)));
+  state.extraOverrides = whole ? extra : { ...state.extraOverrides, ...extra };
   for (const input of document.querySelectorAll("#case-fields input[type=number]"))
     if (o[input.dataset.key] !== undefined) input.value = +(o[input.dataset.key] * Number(input.dataset.scale)).toPrecision(6);
   if (o["postures.names"])
@@ -258,6 +265,7 @@ async function checkIncision() {
     $("#points tbody").innerHTML = "";
   }
   $("#run").disabled = !canRun("surgery");
+  $("#sweep-run").disabled = !canRun("sweep");
   if ($("#view-mode").value === "plan" && R > 0 && H > 0) {
     view.showPlan({ R, H }, state.incisionOk ? r.json : null);
     const inputAt = state.inputAt;
@@ -275,11 +283,13 @@ const PANELS = {
   surgery: { run: "#run", cancel: "#cancel", progress: "#progress", stage: "#stage", message: "#job-message" },
   calibrate: { run: "#cal-run", cancel: "#cal-cancel", progress: "#cal-progress", stage: "#cal-stage",
                message: "#cal-message" },
+  sweep: { run: "#sweep-run", cancel: "#sweep-cancel", progress: "#sweep-progress", stage: "#sweep-stage",
+           message: "#sweep-message" },
 };
-const jobs = { surgery: null, calibrate: null };
+const jobs = { surgery: null, calibrate: null, sweep: null };
 
 function canRun(kind) {
-  return jobs[kind] === null && (kind === "surgery" ? state.incisionOk : state.measurements !== null);
+  return jobs[kind] === null && (kind === "calibrate" ? state.measurements !== null : state.incisionOk);
 }
 
 async function submit(kind, body) {
@@ -316,16 +326,29 @@ async function poll(kind) {
   const r = await api("GET", `/api/jobs/${id}`);
   if (r.status !== 200) { localStorage.removeItem("breastsim.job." + kind); jobs[kind] = null; return; }
   const job = r.json;
-  if (kind === "surgery" && !state.shownCase) { applyOverrides(job.overrides); state.shownCase = true; }
+  if (kind === "surgery" && !state.shownCase) { applyOverrides(job.overrides, true); state.shownCase = true; }
   $(panel.progress).value = job.progress;
   $(panel.stage).textContent = `${job.state}: ${job.stage}`;
   if (job.state === "queued" || job.state === "running") return setTimeout(() => poll(kind), 400);
   jobs[kind] = null;
   $(panel.cancel).disabled = true;
   $(panel.run).disabled = !canRun(kind);
-  if (job.state === "done") await (kind === "surgery" ? showResult(job) : showCalibration(job));
+  if (job.state === "done") await { surgery: showResult, calibrate: showCalibration, sweep: showSweep }[kind](job);
   else message($(panel.message), `${job.state}: ${job.error}`);
   if (kind === "surgery") refreshPlans();
+}
+
+// Two of a, s, h, d, each +- its step, around the current plan.
+function runSweep() {
+  const chosen = [...new Set([$("#sweep-first").value, $("#sweep-second").value])].map((key) =>
+    [key, Number($(key === "incision.a_deg" ? "#sweep-step-deg" : "#sweep-step-mm").value)]);
+  submit("sweep", sweepRequest(caseOverrides(), chosen, state.keys));
+}
+
+function showSweep(job) {
+  $("#sweep-result").innerHTML = sweepTable(job);
+  for (const td of document.querySelectorAll("#sweep-table td[data-params]"))
+    td.addEventListener("click", () => { applyOverrides(JSON.parse(td.dataset.params)); checkIncision(); });
 }
 
 function cancel(kind) {
@@ -336,6 +359,7 @@ const g4 = (x) => (typeof x === "number" ? +x.toPrecision(4) : "–");
 
 function showCalibration(job) {
   const s = job.summary;
+  state.calibration = job;
   state.fitted = s.fitted_overrides;
   $("#cal-result").innerHTML = `<p>misfit χ² ${g4(s.chi2_before)} → <b data-key="chi2_after">${g4(s.chi2_after)}</b> ` +
     `(${s.measurements} measurements, ${s.evaluations} evaluations: ${s.stop_reason})</p>` +
@@ -344,7 +368,6 @@ function showCalibration(job) {
       `<td>${g4(p.interval_95[0])} – ${g4(p.interval_95[1])}</td><td style="text-align:left">${p.identifiability}</td></tr>`).join("") +
     '</tbody></table><button id="cal-use">Use the fitted values</button>';
   $("#cal-use").addEventListener("click", () => {
-    state.extraOverrides = { ...state.extraOverrides, ...state.fitted };
     applyOverrides(state.fitted);
     validateCase();
   });
@@ -379,6 +402,8 @@ async function showResult(job) {
     .map((f) => `<a href="/api/jobs/${job.id}/files/${f}" download>${f === "postop_index.html" ? "3D report" : f}</a>`)
     .concat([`<a id="export-folder" href="/api/jobs/${job.id}/result.tar" download>result folder (.tar)</a>`]).join(" · ");
   $("#view-mode").value = "side";
+  $("#export-report").disabled = false;
+  $("#report-links").innerHTML = "";
   await showSurfaces();
 }
 
@@ -418,7 +443,7 @@ async function refreshPlans() {
       ev.preventDefault();
       state.surfaces = {};
       const j = await api("GET", `/api/jobs/${a.dataset.job}`);
-      if (j.status === 200) { applyOverrides(j.json.overrides); showResult(j.json); }
+      if (j.status === 200) { applyOverrides(j.json.overrides, true); showResult(j.json); }
     });
 }
 
@@ -428,6 +453,25 @@ function download(name, text, type) {
   a.download = name;
   a.click();
   setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+}
+
+// The printable report of the shown surgery (report.js): pictures from this
+// page's renderer, the numbers from the server.
+async function makeReport() {
+  const job = state.result;
+  if (!job) return;
+  $("#export-report").disabled = true;
+  const pictures = await reportPictures(api, view, job, surface);
+  view.framed = null;
+  await showSurfaces();
+  const calibration = usesFit(job, state.calibration) ? state.calibration.id : null;
+  const r = await api("POST", `/api/jobs/${job.id}/report`, { pictures, calibration });
+  $("#export-report").disabled = false;
+  if (r.status !== 200) return message($("#export-message"), r.json.error);
+  message($("#export-message"), "");
+  $("#report-links").innerHTML = `<a id="report-open" href="${r.json.url}" target="_blank">open the report</a> ` +
+    `(print it, or save it as PDF) · <a id="report-download" href="${r.json.url}" download="breastsim-report-${job.id}.html">download</a>`;
+  app.reports += 1;
 }
 
 async function exportCase() {
@@ -448,14 +492,20 @@ async function main() {
   $("#cancel").addEventListener("click", () => cancel("surgery"));
   $("#cal-run").addEventListener("click", runCalibration);
   $("#cal-cancel").addEventListener("click", () => cancel("calibrate"));
+  for (const id of ["#sweep-first", "#sweep-second"])
+    $(id).innerHTML = Object.entries(SWEEP_KEYS).map(([k, [n]]) => `<option value="${k}">${n}</option>`).join("");
+  $("#sweep-second").value = "incision.h";
+  $("#sweep-run").addEventListener("click", runSweep);
+  $("#sweep-cancel").addEventListener("click", () => cancel("sweep"));
   $("#view-mode").addEventListener("change", showSurfaces);
   $("#view-posture").addEventListener("change", showSurfaces);
   $("#export-case").addEventListener("click", exportCase);
+  $("#export-report").addEventListener("click", makeReport);
   $("#export-measurements").addEventListener("click", () =>
     download("measurements.json", JSON.stringify(measurementDocument(), null, 2), "application/json"));
   await showSurfaces();
   await refreshPlans();
-  for (const kind of ["calibrate", "surgery"]) { // a reload reattaches to the running (or finished) jobs
+  for (const kind of ["calibrate", "surgery", "sweep"]) { // a reload reattaches to the running (or finished) jobs
     const id = localStorage.getItem("breastsim.job." + kind);
     if (id) attach(kind, id, false);
   }

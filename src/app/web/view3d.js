@@ -70,6 +70,24 @@ export class View3D {
     this.render();
   }
 
+  // The scene drawn at w x h pixels, seen from `direction` (scene axes: x
+  // lateral, y up, z out of the chest) if given: a PNG, base64 without the
+  // data: prefix. The view is left as it was.
+  snapshot(w, h, direction) {
+    const camera = this.camera.clone(), target = this.controls.target.clone();
+    if (direction) this.frame(new THREE.Vector3(...direction));
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.render();
+    const png = this.renderer.domElement.toDataURL("image/png").split(",")[1];
+    this.camera.position.copy(camera.position);
+    this.camera.quaternion.copy(camera.quaternion);
+    this.controls.target.copy(target);
+    this.resize();
+    return png;
+  }
+
   // Aim the camera at the content from `direction` at a distance that shows all of it.
   frame(direction) {
     const box = new THREE.Box3().setFromObject(this.content);
