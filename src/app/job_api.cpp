@@ -106,7 +106,7 @@ void add_job_routes(httplib::Server& server, JobStore& store, JobQueue& queue)
                 "application/x-tar");
     res.set_header("Content-Disposition", "attachment; filename=\"breastsim-" + id + ".tar\"");
   });
-  server.Get(R"(/api/jobs/([0-9a-f]{16})/files/([A-Za-z0-9_.\-]{1,160}))",
+  server.Get(R"(/api/jobs/([0-9a-f]{16})/files/([A-Za-z0-9_.=\-]{1,160}))",
              [&](const httplib::Request& req, httplib::Response& res) {
                const fs::path file = job_file(store, req.matches[1], req.matches[2]);
                if (file.empty())

@@ -111,7 +111,12 @@ nlohmann::json summarize_sweep(const Config& c, const fs::path& dir)
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& r : read_json(dir / "sweep.json"))
   {
-    nlohmann::json row = {{"parameters", r.at("parameters")}, {"ok", r.at("ok")}};
+    // The combination's folder, named as sweep() names it (key=value joined by _).
+    std::string folder;
+    for (const auto& [key, value] : r.at("parameters").items())
+      folder += (folder.empty() ? "" : "_") + key + "=" + plain_text(Value(value.get<double>()));
+    nlohmann::json row = {{"parameters", r.at("parameters")}, {"ok", r.at("ok")},
+                          {"postop_surface", folder + "_postop_surface_standing.json"}};
     if (!r.at("ok").get<bool>())
     {
       row["error"] = r.value("error", "");

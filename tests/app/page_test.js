@@ -89,7 +89,7 @@ async function report(page, job, mu) {
   const tab = await page.context().newPage();
   try {
     await tab.goto(new URL(href, url).href);
-    await tab.screenshot({ path: path.join(shots, "6-report.png"), fullPage: false });
+    await tab.screenshot({ path: path.join(shots, "6-report.png"), fullPage: true });
     const pdf = path.join(shots, "report.pdf");
     await tab.pdf({ path: pdf, format: "A4", printBackground: true });
     const head = fs.readFileSync(pdf).subarray(0, 5).toString();
@@ -105,12 +105,15 @@ async function smallSweep(page, job) {
   await page.selectOption("#sweep-first", "incision.a_deg");
   await page.selectOption("#sweep-second", "incision.h");
   await page.click("#sweep-run");
-  await page.waitForSelector("#sweep-table", { timeout: 170000 });
+  await page.waitForFunction(() => window.breastsimApp.sweeps > 0, null, { timeout: 170000 });
   const centre = await page.$$eval("#sweep-table td.current [data-key]", (es) => es.map((e) => e.textContent));
   const s = job.summary;
   const cells = await page.$$eval("#sweep-table td.sweep-cell", (es) => es.length);
+  const pictures = await page.$$eval("#sweep-table img.sweep-shape", (es) => es.filter((e) => e.src.startsWith("data:image/png;base64,")).length);
+  check(pictures === 9, `each cell shows the shape after the surgery (${pictures} pictures)`);
   check(cells === 9 && centre[0] === s.resected_volume_cm3.toFixed(1) && centre[1] === s.postures[0].post.nipple_to_base_mm.toFixed(1),
         `a 3 x 3 sweep of a and h; its centre equals the surgery (${centre.join(" cm³, ")} mm)`);
+  await page.$eval("#sweep-result", (e) => e.scrollIntoView());
   await page.screenshot({ path: path.join(shots, "5-sweep.png") });
 }
 

@@ -4,11 +4,11 @@
 // server with the library's messages; the page only adds checks as typed.
 import { View3D, POINT_COLOURS } from "/view3d.js";
 import { reportPictures, usesFit } from "/report.js";
-import { SWEEP_KEYS, sweepRequest, sweepTable } from "/sweep.js";
+import { SWEEP_KEYS, sweepPictures, sweepRequest, sweepTable } from "/sweep.js";
 
 const $ = (s) => document.querySelector(s);
 const state = { keys: {}, job: null, incisionOk: false, measurements: null, surfaces: {} };
-const app = (window.breastsimApp = { ready: false, lastRedrawMs: null, redraws: 0, reports: 0, errors: [] });
+const app = (window.breastsimApp = { ready: false, lastRedrawMs: null, redraws: 0, reports: 0, sweeps: 0, errors: [] });
 let view;
 
 async function api(method, path, body) {
@@ -345,10 +345,17 @@ function runSweep() {
   submit("sweep", sweepRequest(caseOverrides(), chosen, state.keys));
 }
 
-function showSweep(job) {
+async function showSweep(job) {
   $("#sweep-result").innerHTML = sweepTable(job);
   for (const td of document.querySelectorAll("#sweep-table td[data-params]"))
     td.addEventListener("click", () => { applyOverrides(JSON.parse(td.dataset.params)); checkIncision(); });
+  await sweepPictures(view, async (name) => {
+    const r = await api("GET", `/api/jobs/${job.id}/files/${name}`);
+    return r.status === 200 ? r.json : null;
+  });
+  view.framed = null;
+  await showSurfaces();
+  app.sweeps += 1;
 }
 
 function cancel(kind) {

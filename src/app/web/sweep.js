@@ -2,7 +2,8 @@
 // library's sweep() over +-1 step of two of a, s, h, d) and its table like
 // the paper's Fig. 10: one row per value of the first parameter, one column
 // per value of the second, in each cell the resected volume and weight, the
-// standing nipple-to-base distance and the lower pole's share of the height.
+// standing nipple-to-base distance and the lower pole's share of the height,
+// over a picture of the post-operative shape.
 
 export const SWEEP_KEYS = { "incision.a_deg": ["a", 1, "°"], "incision.s": ["s", 1e3, " mm"],
                             "incision.h": ["h", 1e3, " mm"], "incision.d": ["d", 1e3, " mm"] };
@@ -31,6 +32,7 @@ function cell(row, ideal, current) {
   if (!row.ok) return `<td class="sweep-cell impossible" data-params="${params}">impossible: ${esc(row.error)}</td>`;
   const nb = row.nipple_to_base_mm, ok = Math.abs(nb - ideal.nipple_to_base_mm) <= 5 ? "ideal-ok" : "ideal-off";
   return `<td class="sweep-cell${current ? " current" : ""}" data-params="${params}">` +
+    `<img class="sweep-shape" alt="" data-surface="${esc(row.postop_surface)}"><br>` +
     `<b data-key="resected_volume_cm3">${row.resected_volume_cm3.toFixed(1)}</b> cm³, ${row.resected_weight_g.toFixed(0)} g<br>` +
     `nipple→base <span class="${ok}" data-key="nipple_to_base_mm">${nb.toFixed(1)}</span> mm<br>` +
     `lower pole ${(100 * row.lower_pole_height_share).toFixed(0)} % of the height</td>`;
@@ -50,4 +52,23 @@ export function sweepTable(job) {
     html += `<tr><th>${show(k1, v1)}</th>` + cols.map((v2) => cell(find(v1, v2), job.summary.ideal, isCurrent(v1, v2))).join("") + "</tr>";
   return html + `</tbody></table><p class="hint">Sweep ${job.id.slice(0, 6)} around the plan in bold frame ` +
     "(standing, post-operative; the lower pole's share of the breast height, ideal ≈ 55 %). Click a cell to load its plan.</p>";
+}
+
+// Each cell's picture, drawn by the page's renderer `view`: the standing skin
+// after the surgery (blue) over the one before (translucent), in profile, all
+// from one camera (framed on the first) so that the shapes compare.
+// `getJson(name)`: a file of the sweep job, or null.
+export async function sweepPictures(view, getJson) {
+  const imgs = [...document.querySelectorAll("#sweep-table img[data-surface]")];
+  if (imgs.length === 0) return;
+  const pre = await getJson(imgs[0].dataset.surface.replace(/_postop_surface_/, "_preop_surface_"));
+  let framed = false;
+  for (const img of imgs) {
+    const post = await getJson(img.dataset.surface);
+    if (!pre || !post) continue;
+    view.showSurfaces(pre, post, "overlay");
+    if (!framed) view.look([-1, 0.1, 0]);
+    framed = true;
+    img.src = "data:image/png;base64," + view.snapshot(200, 150);
+  }
 }

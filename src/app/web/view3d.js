@@ -75,7 +75,7 @@ export class View3D {
   // data: prefix. The view is left as it was.
   snapshot(w, h, direction) {
     const camera = this.camera.clone(), target = this.controls.target.clone();
-    if (direction) this.frame(new THREE.Vector3(...direction));
+    if (direction) this.frame(new THREE.Vector3(...direction), 0.4);
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
@@ -88,11 +88,18 @@ export class View3D {
     return png;
   }
 
-  // Aim the camera at the content from `direction` at a distance that shows all of it.
-  frame(direction) {
+  // Aim the camera at the content from `direction` (an array, scene axes).
+  look(direction) {
+    this.frame(new THREE.Vector3(...direction), 0.4);
+  }
+
+  // Aim the camera at the content from `direction` at a distance that shows
+  // all of it: `margin` x the content's diagonal fills half the field of view
+  // (0.4 for pictures, 0.6 with room to turn it on the page).
+  frame(direction, margin = 0.6) {
     const box = new THREE.Box3().setFromObject(this.content);
     const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
-    const distance = (0.6 * size) / Math.tan((this.camera.fov * Math.PI) / 360);
+    const distance = (margin * size) / Math.tan((this.camera.fov * Math.PI) / 360);
     this.controls.target.copy(centre);
     this.camera.position.copy(centre).addScaledVector(direction.clone().normalize(), distance);
     this.camera.lookAt(centre);
