@@ -11,8 +11,13 @@
 #include "reference_reset.hpp"
 #include "timer.hpp"
 #include "viewer.hpp"
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/utils.h>
 #include <dolfinx/io/XDMFFile.h>
 #include <fmt/format.h>
+#include <cmath>
+#include <limits>
+#include <numeric>
 
 namespace breastsim
 {
@@ -47,13 +52,91 @@ double max_suture_gap(const Model& m)
   return global;
 }
 
-SutureReport close_sutures(Model& model, const Config& c)
+namespace
 {
-  Stopwatch clock("surgery: sutures");
-  SutureReport rep;
-  const bool gravity_on = model.term_on("gravity");
-  model.set_term("sutures", true);
-  model.set_term("gravity", false); // knitting happens in the neutral (gravity-free) state
+/// Row-major table for Expression::eval.
+struct Table
+{
+  std::vector<double> data;
+  std::size_t cols;
+  double& operator()(std::size_t i, std::size_t j) { return data[i * cols + j]; }
+};
+} // namespace
+
+FoldSite fold_site(Model& model)
+{
+  const TaggedDolfinxMesh& tm = model.mesh();
+  // det F at the element nodes, then at the centroid (forms/geometry_forms.py).
+  auto expr = dolfinx::fem::create_expression<T>(*generated::detF_expression(tm.degree),
+                                                  {{"u", model.displacement()}}, {}, tm.mesh);
+  const std::int32_t nc = tm.mesh->topology().index_map(3)->size_local();
+  std::vector<std::int32_t> cells(nc);
+  std::iota(cells.begin(), cells.end(), 0);
+  const std::size_t np = expr.X().second[0];
+  Table det{std::vector<double>(nc * np), np};
+  expr.eval(std::span<const std::int32_t>(cells), det);
+  int rank;
+  MPI_Comm comm = tm.mesh->comm();
+  MPI_Comm_rank(comm, &rank);
+  struct { double value; int rank; } local{std::numeric_limits<double>::infinity(), rank}, global;
+  std::int32_t worst = -1;
+  for (std::int32_t c = 0; c < nc; ++c)
+    for (std::size_t p = 0; p + 1 < np; ++p)
+      if (det(c, p) < local.value || std::isnan(det(c, p)))
+      {
+        local.value = std::isnan(det(c, p)) ? -std::numeric_limits<double>::infinity() : det(c, p);
+        worst = c;
+      }
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm);
+  std::array<double, 5> buf{};
+  if (rank == global.rank && worst >= 0)
+  {
+    // Centroid of the cell's corners (the first four geometry nodes).
+    auto x = tm.mesh->geometry().x();
+    auto nodes = tm.mesh->geometry().dofmap().links(worst);
+    buf = {local.value, det(worst, np - 1), 0, 0, 0};
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 3; ++i)
+        buf[2 + i] += x[3 * nodes[k] + i] / 4;
+  }
+  MPI_Bcast(buf.data(), 5, MPI_DOUBLE, global.rank, comm);
+  return {buf[0], buf[1], {buf[2], buf[3], buf[4]}};
+}
+
+namespace
+{
+/// Where the closure stopped: the fold site and the nearest incision point.
+std::string describe_fold(Model& model, const Config& c)
+{
+  const FoldSite f = fold_site(model);
+  std::string s = fmt::format("; in the last converged state the smallest det F at an element node is {:.3g}, in "
+                              "the tetrahedron centred at ({:.1f}, {:.1f}, {:.1f}) mm (det F {:.3g} at its centroid)",
+                              f.det_node, 1e3 * f.x[0], 1e3 * f.x[1], 1e3 * f.x[2], f.det_centroid);
+  meshes::IncisionGeometry g;
+  try
+  {
+    g = meshes::incision_geometry(HalfCapSpec::from(c), IncisionSpec::from(c));
+  }
+  catch (const InputError&)
+  {
+    return s; // a body without the case's incision (e.g. a test block)
+  }
+  const std::pair<const char*, meshes::Point> points[] = {{"A", g.A}, {"B", g.B}, {"C", g.C}, {"D", g.D}};
+  double best = std::numeric_limits<double>::infinity();
+  const char* name = "";
+  for (const auto& [n, p] : points)
+  {
+    const double d = std::hypot(p[0] - f.x[0], p[1] - f.x[1], p[2] - f.x[2]);
+    if (d < best)
+      best = d, name = n;
+  }
+  return s + fmt::format(", {:.1f} mm from incision point {}", 1e3 * best, name);
+}
+
+/// Closure stepping, then the penalty raised x10 until the gap is at most
+/// surgery.max_gap (the suture term on, gravity off).
+void close_and_tighten(Model& model, const Config& c, SutureReport& rep)
+{
   NewtonSolver newton(model, NewtonOptions::from(c));
   // Force scale: the suture pull at the start of closure.
   model.set_parameter("closure", {1.0});
@@ -77,6 +160,24 @@ SutureReport close_sutures(Model& model, const Config& c)
     log::info("suture penalty raised to {:.3g} Pa/m: largest gap {:.4f} mm", k, 1e3 * rep.max_gap);
   }
   rep.k_final = k;
+}
+} // namespace
+
+SutureReport close_sutures(Model& model, const Config& c)
+{
+  Stopwatch clock("surgery: sutures");
+  SutureReport rep;
+  const bool gravity_on = model.term_on("gravity");
+  model.set_term("sutures", true);
+  model.set_term("gravity", false); // knitting happens in the neutral (gravity-free) state
+  try
+  {
+    close_and_tighten(model, c, rep);
+  }
+  catch (const SolveError& e)
+  {
+    throw SolveError(e.what() + describe_fold(model, c));
+  }
   model.set_term("gravity", gravity_on); // as before the knitting
   rep.seconds = clock.seconds();
   return rep;

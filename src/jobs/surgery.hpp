@@ -36,9 +36,21 @@ struct SurgeryResult
 /// Write a mesh and its facet tags (no field) as XDMF (collective).
 void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
 
+/// Where a deformation is closest to folding: the smallest det F at any
+/// element node (P2: corners and edge midpoints), det F at that cell's
+/// centroid and the centroid of its corners [m] (collective).
+struct FoldSite
+{
+  double det_node = 0;
+  double det_centroid = 0;
+  std::array<double, 3> x{};
+};
+FoldSite fold_site(Model& model);
+
 /// Close the incision of a model whose mesh has the suture tags: closure
 /// stepping without gravity, then the penalty is raised x10 until the
-/// largest gap is at most c's surgery.max_gap. Throws SolveError on failure.
+/// largest gap is at most c's surgery.max_gap. Throws SolveError on failure,
+/// naming the fold site (fold_site) and the nearest incision point.
 SutureReport close_sutures(Model& model, const Config& c);
 /// Largest distance of the suture faces' nodes to their target planes.
 double max_suture_gap(const Model& model);
