@@ -171,9 +171,13 @@ TEST(UserMesh, RefusesAMissingGroupOrAGroupOfTheWrongDimension)
 {
   ScratchDir dir;
   RawMesh m = box_mesh(1);
+  m.surfaces.erase("skin");
+  expect_refused(write_msh(m, dir.path / "no_skin.msh"), 1,
+                 {"no physical surface \"skin\"", "\"symmetry\" (dimension 2"});
+  // Without "symmetry" the mesh is a full breast: the face x = 0 is then untagged.
+  m = box_mesh(1);
   m.surfaces.erase("symmetry");
-  expect_refused(write_msh(m, dir.path / "no_symmetry.msh"), 1,
-                 {"no physical surface \"symmetry\"", "\"skin\" (dimension 2"});
+  expect_refused(write_msh(m, dir.path / "no_symmetry.msh"), 1, {"is in none of the surfaces"});
   m = box_mesh(1);
   m.volume_groups = {"body"};
   expect_refused(write_msh(m, dir.path / "no_tissue.msh"), 1, {"no physical volume \"tissue\"", "\"body\""});
@@ -182,6 +186,20 @@ TEST(UserMesh, RefusesAMissingGroupOrAGroupOfTheWrongDimension)
   m.volume_groups.push_back("skin");
   expect_refused(write_msh(m, dir.path / "skin_volume.msh"), 1,
                  {"physical group \"skin\" has dimension 3", "physical surface (dimension 2)"});
+}
+
+TEST(UserMesh, AFullBreastHasNoSymmetryFaceAndMayCrossXEqualsZero)
+{
+  ScratchDir dir;
+  RawMesh m = box_mesh(1);
+  auto& skin = m.surfaces.at("skin");
+  skin.insert(skin.end(), m.surfaces.at("symmetry").begin(), m.surfaces.at("symmetry").end());
+  m.surfaces.erase("symmetry");
+  for (std::size_t n = 0; n < m.x.size() / 3; ++n)
+    m.x[3 * n] -= box_x / 2; // the body across x = 0
+  const auto full = meshes::read_user_mesh(write_msh(m, dir.path / "full.msh"), 1, tags);
+  EXPECT_EQ(count(full.facet_tags, tags.symmetry), 0u);
+  EXPECT_EQ(count(full.facet_tags, tags.skin), skin.size() / 3);
 }
 
 TEST(UserMesh, RefusesCellsThatAreNotTetrahedraOfTheCaseOrder)

@@ -25,4 +25,6 @@ Command add_record_command(CLI::App& root);   // record_command.cpp
 Command add_diagnose_command(CLI::App& root); // diagnose_command.cpp
 Command add_serve_command(CLI::App& root);    // serve_command.cpp
 Command add_neutral_state_command(CLI::App& root); // neutral_state_command.cpp
+Command add_scan_model_command(CLI::App& root);    // scan_model_command.cpp
+Command add_synthetic_patient_command(CLI::App& root); // synthetic_patient_command.cpp
 } // namespace breastsim::cli

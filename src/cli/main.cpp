@@ -106,6 +106,8 @@ int main(int argc, char** argv)
       cli::add_diagnose_command(app),
       cli::add_serve_command(app),
       cli::add_neutral_state_command(app),
+      cli::add_scan_model_command(app),
+      cli::add_synthetic_patient_command(app),
   };
 
   if (const std::string sub = unknown_subcommand(argc, argv, app); !sub.empty())

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
 
 namespace breastsim
 {
@@ -62,6 +63,38 @@ Config reference_case(const Config& c, const std::array<double, 3>& nipple)
   return r;
 }
 
+/// The reference's tetrahedra keep their orientation: signed corner volume
+/// (b - a) . ((c - a) x (d - a)) / 6 > 0; else SolveError naming the cell.
+void check_reference_cells(const meshes::TaggedMesh& m)
+{
+  const std::size_t npc = m.nodes_per_cell();
+  for (std::size_t c = 0; c < m.num_cells(); ++c)
+  {
+    std::array<std::array<double, 3>, 4> p;
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 3; ++i)
+        p[k][i] = m.x[3 * m.cells[c * npc + k] + i];
+    auto d = [&](int k, int i) { return p[k][i] - p[0][i]; };
+    const double v = (d(1, 0) * (d(2, 1) * d(3, 2) - d(2, 2) * d(3, 1)) - d(1, 1) * (d(2, 0) * d(3, 2) - d(2, 2) * d(3, 0)) +
+                      d(1, 2) * (d(2, 0) * d(3, 1) - d(2, 1) * d(3, 0))) / 6;
+    if (!(v > 0))
+      throw SolveError(fmt::format("inverse neutral state: the reference found folds: tetrahedron {} near ({:.1f}, "
+                                   "{:.1f}, {:.1f}) mm is inverted (volume {:.3g} mm^3); no stress-free body of this "
+                                   "mesh deforms into the shape (a finer mesh, or a shape the material can hold)",
+                                   c, 1e3 * p[0][0], 1e3 * p[0][1], 1e3 * p[0][2], 1e9 * v));
+  }
+}
+
+/// Names of the surfaces the loaded mesh has (a full breast has no symmetry face).
+std::map<int, std::string> surface_names(const meshes::TaggedMesh& m)
+{
+  std::map<int, std::string> names;
+  for (const char* n : {"base", "skin", "symmetry"})
+    if (std::count(m.facet_tags.begin(), m.facet_tags.end(), generated::tag(n)) > 0)
+      names[generated::tag(n)] = n;
+  return names;
+}
+
 nlohmann::json to_json(const NeutralStateResult& r)
 {
   nlohmann::json it = nlohmann::json::array();
@@ -100,10 +133,22 @@ NeutralStateResult neutral_state(const Config& c, const Posture& posture, const 
       r.max_node_shift = std::max(r.max_node_shift, std::abs(x[i] - loaded.x[i]));
     loaded.x = x;
     r.nipple = {x[3 * nipple], x[3 * nipple + 1], x[3 * nipple + 2]};
-    meshes::write_msh22(loaded, {{generated::tag("base"), "base"}, {generated::tag("skin"), "skin"},
-                                 {generated::tag("symmetry"), "symmetry"}},
-                        dir.path() / "reference.msh");
   }
+  std::string fold; // rank 0's SolveError, thrown on every rank
+  if (rank_of(comm) == 0)
+    try
+    {
+      check_reference_cells(loaded);
+    }
+    catch (const SolveError& e)
+    {
+      fold = e.what();
+    }
+  broadcast(fold, comm);
+  if (!fold.empty())
+    throw SolveError(fold);
+  if (rank_of(comm) == 0)
+    meshes::write_msh22(loaded, surface_names(loaded), dir.path() / "reference.msh");
   MPI_Bcast(r.nipple.data(), 3, MPI_DOUBLE, 0, comm);
   MPI_Bcast(&r.max_node_shift, 1, MPI_DOUBLE, 0, comm);
   write_text(dir.path() / "case.reference.toml", reference_case(c, r.nipple).to_toml(), comm);

@@ -99,6 +99,21 @@ Group find_group(const std::string& name, int dim, const std::string& where)
                                dim, present.empty() ? "no physical groups" : "the groups " + present));
 }
 
+/// Is there a physical surface called `name`? (A full model has no "symmetry".)
+bool has_surface_group(const std::string& name)
+{
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, 2);
+  for (auto [d, t] : groups)
+  {
+    std::string n;
+    gmsh::model::getPhysicalName(d, t, n);
+    if (n == name)
+      return true;
+  }
+  return false;
+}
+
 /// The elements of `group`, all of gmsh type `want` (else an InputError
 /// naming the group, the element and what `order` allows).
 GmshElements group_elements(const Group& group, const std::string& name, int want, int order,
@@ -182,7 +197,7 @@ void add_surface(const std::string& name, int value, int order,
 TaggedMesh read_user_mesh(const std::filesystem::path& path, int order, const UserMeshTags& tags)
 {
   UserMeshOrigin origin{fmt::format("geometry.mesh_file = '{}'", path.string()), {}, {}, tags.base,
-                        tags.skin, tags.symmetry};
+                        tags.skin, tags.symmetry, true};
   check_is_mesh_file(path, origin.where);
   GmshSession session;
   open_mesh(path, origin.where);
@@ -195,7 +210,9 @@ TaggedMesh read_user_mesh(const std::filesystem::path& path, int order, const Us
   const auto index = number_nodes(tets, m);
   add_surface("base", tags.base, order, index, m, origin);
   add_surface("skin", tags.skin, order, index, m, origin);
-  add_surface("symmetry", tags.symmetry, order, index, m, origin);
+  origin.half = has_surface_group("symmetry");
+  if (origin.half)
+    add_surface("symmetry", tags.symmetry, order, index, m, origin);
   check_user_mesh(m, origin);
   return m;
 }

@@ -8,10 +8,11 @@
 //   volume  "tissue"    the tetrahedra of the body;
 //   surface "base"      the attachment to the chest, on the plane y = 0;
 //   surface "skin"      the outer surface;
-//   surface "symmetry"  the cut face of the half model, on the plane x = 0.
-// Every boundary face of the tetrahedra belongs to exactly one of the three
-// surfaces. The symmetry face is required: the observables (volume, energy,
-// base perimeter of the full breast) and the pictures mirror the half model.
+//   surface "symmetry"  the cut face of a half model, on the plane x = 0.
+// Every boundary face of the tetrahedra belongs to exactly one of the
+// surfaces. Without a "symmetry" group the mesh is the full breast (x of
+// either sign, no sliding condition; SPEC.md "Full breast"); with it, the
+// half x >= 0, whose observables (volume, energy, base perimeter) mirror it.
 //
 // Checked on read, each failure an InputError naming geometry.mesh_file, the
 // group and the cell or node: the file (exists, starts with $MeshFormat: a
@@ -21,7 +22,8 @@
 // 10-node tetrahedra also det J > 0 at the ten nodes), the faces (each tagged
 // triangle is a boundary face of one tetrahedron, each boundary face is
 // tagged once), the planes (base on y = 0 facing -y, symmetry on x = 0
-// facing -x, the body in x >= 0, y >= 0) and the units (extent < 1 m).
+// facing -x, the body in y >= 0 and, for a half model, x >= 0) and the units
+// (extent < 1 m).
 #include "mesh_from_gmsh.hpp"
 #include "tagged_mesh.hpp"
 #include <array>

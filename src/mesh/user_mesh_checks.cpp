@@ -282,15 +282,16 @@ void check_plane_surface(const TaggedMesh& m, const UserMeshOrigin& o, const std
   }
 }
 
-/// The body in x >= 0 (half model) and y >= 0 (in front of the chest).
+/// The body in y >= 0 (in front of the chest) and, for a half model, x >= 0.
 void check_half_space(const TaggedMesh& m, const UserMeshOrigin& o, double tol)
 {
   for (std::size_t n = 0; n < m.num_nodes(); ++n)
     for (int axis : {0, 1})
-      if (m.x[3 * n + axis] < -tol)
-        throw InputError(fmt::format("{}: node {} at {} has {} < 0; the half model lies in x >= 0 and in front "
-                                     "of the chest, y >= 0 (SPEC.md)",
-                                     o.where, n, point(node(m, n)), axis == 0 ? "x" : "y"));
+      if (m.x[3 * n + axis] < -tol && (axis == 1 || o.half))
+        throw InputError(fmt::format("{}: node {} at {} has {} < 0; {} (SPEC.md)", o.where, n, point(node(m, n)),
+                                     axis == 0 ? "x" : "y",
+                                     o.half ? "the half model lies in x >= 0 and in front of the chest, y >= 0"
+                                            : "the breast lies in front of the chest, y >= 0"));
 }
 } // namespace
 
@@ -302,7 +303,8 @@ void check_user_mesh(const TaggedMesh& m, const UserMeshOrigin& o)
   const std::vector<FacetSide> sides = match_faces(m, o);
   // Plane tolerance: relative to the size of the body.
   const double tol = 1e-6 * extent(m);
-  check_plane_surface(m, o, sides, o.symmetry, 0, tol);
+  if (o.half)
+    check_plane_surface(m, o, sides, o.symmetry, 0, tol);
   check_plane_surface(m, o, sides, o.base, 1, tol);
   check_half_space(m, o, tol);
 }

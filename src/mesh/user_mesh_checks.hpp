@@ -17,6 +17,7 @@ struct UserMeshOrigin
   std::vector<std::size_t> cell_elements;   ///< gmsh element tag of each cell
   std::vector<std::size_t> facet_elements;  ///< gmsh element tag of each facet
   int base, skin, symmetry;                 ///< tag values of the surfaces
+  bool half = true;                         ///< a half model (with "symmetry"); false: the full breast
 };
 
 /// Throw an InputError at the first failed check (user_mesh.hpp lists them).

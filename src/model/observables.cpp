@@ -20,6 +20,9 @@ ObservableProbe::ObservableProbe(const Model& m, std::array<double, 3> p)
   _skin = m.boundary_nodes("skin");
   const auto base = m.boundary_nodes("base");
   std::set_intersection(_skin.begin(), _skin.end(), base.begin(), base.end(), std::back_inserter(_rim));
+  int symmetry_nodes = static_cast<int>(m.boundary_nodes("symmetry").size());
+  MPI_Allreduce(MPI_IN_PLACE, &symmetry_nodes, 1, MPI_INT, MPI_SUM, m.mesh().mesh->comm());
+  _copies = symmetry_nodes > 0 ? 2 : 1;
 
   // Nipple: the skin node nearest to the reference point, over all ranks.
   struct
@@ -96,9 +99,11 @@ Observables ObservableProbe::measure(Model& m) const
   double arc = 0;
   for (std::size_t i = 1; i < rim.size(); ++i)
     arc += std::hypot(rim[i][1] - rim[i - 1][1], rim[i][2] - rim[i - 1][2], rim[i][3] - rim[i - 1][3]);
-  o.base_perimeter = 2 * arc;
-  o.volume = 2 * m.volume();
-  o.energy = 2 * m.energy();
+  if (_copies == 1 && rim.size() > 2) // the full rim is closed
+    arc += std::hypot(rim.front()[1] - rim.back()[1], rim.front()[2] - rim.back()[2], rim.front()[3] - rim.back()[3]);
+  o.base_perimeter = _copies * arc;
+  o.volume = _copies * m.volume();
+  o.energy = _copies * m.energy();
   return o;
 }
 } // namespace breastsim

@@ -1,7 +1,8 @@
 #pragma once
 // Observables of a deformed breast (SPEC.md), computed on the skin nodes:
 // nipple position, projection (max y), z_min, z_max, base perimeter (full
-// breast), volume (full breast) and total energy (full breast).
+// breast), volume (full breast) and total energy (full breast). A half model
+// (with a symmetry face) is mirrored; a full breast is measured as it is.
 #include "model.hpp"
 #include <array>
 #include <nlohmann/json.hpp>
@@ -36,5 +37,6 @@ private:
   std::vector<std::int32_t> _rim;    // nodes on base and skin
   int _apex_rank = 0;
   std::int32_t _apex_node = -1;      // on _apex_rank
+  int _copies = 2;                   // 2: a half model (mirrored), 1: the full breast (no symmetry face)
 };
 } // namespace breastsim

@@ -12,14 +12,14 @@ import sys
 # Folder -> layer, and the layers each layer may use directly (the uses are
 # closed transitively below). Mirrors the link dependencies in CMakeLists.txt.
 LAYERS = {
-    "src/core": "core", "src/forms": "forms", "src/case": "case", "src/mesh": "mesh",
+    "src/core": "core", "src/forms": "forms", "src/case": "case", "src/mesh": "mesh", "src/scan": "scan",
     "src/model": "model", "src/solver": "solver", "src/io": "io", "verification": "verification",
     "src/jobs": "jobs", "calibrate": "calibrate", "src/app": "app", "src/cli": "cli", "tests": "tests",
 }
 USES = {
-    "core": [], "forms": [], "case": ["core", "forms"], "mesh": ["case"], "model": ["mesh"],
+    "core": [], "forms": [], "case": ["core", "forms"], "mesh": ["case"], "scan": ["mesh"], "model": ["mesh"],
     "solver": ["model"], "io": ["model"], "verification": ["model"],
-    "jobs": ["solver", "io", "verification"], "calibrate": ["solver", "io"],
+    "jobs": ["solver", "io", "verification", "scan"], "calibrate": ["solver", "io"],
     "app": ["jobs", "calibrate"], "cli": ["app", "jobs", "calibrate"], "tests": ["app", "jobs", "calibrate"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)

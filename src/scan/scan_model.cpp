@@ -1,0 +1,50 @@
+#include "scan_model.hpp"
+#include "scan_readers.hpp"
+#include <cmath>
+
+namespace breastsim::scan
+{
+ScanModel fit_scan(const ScanSurface& skin, const ScanSurface* chest, const ScanModelOptions& o)
+{
+  check_scan(skin, o.limits);
+  if (chest)
+    check_scan(*chest, o.limits, true);
+  ScanModel m;
+  m.points = skin.points.size();
+  m.triangles = skin.triangles.size();
+  m.frame = breast_frame(skin, chest, o.frame, o.limits.max_hole);
+  const std::vector<std::size_t> used = fit_points(skin);
+  std::vector<Vec3> pts;
+  pts.reserve(used.size());
+  for (std::size_t i : used)
+    pts.push_back(m.frame.to_breast(skin.points[i]));
+  m.points_used = used.size();
+  m.fit = fit_radial(pts, o.degree, o.smoothing);
+  const std::vector<double> r = radial_residuals(m.fit, pts);
+  check_fit(skin, m.frame, m.fit, used, r, o.limits);
+  double sum = 0;
+  for (double v : r)
+    sum += v * v;
+  m.fit_rms = std::sqrt(sum / r.size());
+  m.noise_rms = robust_rms(r);
+  return m;
+}
+
+ScanModel build_scan_model(const std::filesystem::path& skin, const std::optional<std::filesystem::path>& chest,
+                           const ScanModelOptions& o, int tag_base, int tag_skin, int tag_symmetry)
+{
+  const ScanSurface s = read_scan(skin, o.units);
+  std::optional<ScanSurface> c;
+  if (chest)
+    c = read_scan(*chest, o.units);
+  ScanModel m = fit_scan(s, c ? &*c : nullptr, o);
+  // The nipple on the fitted skin, in the sagittal plane x = 0 of the frame.
+  const Vec3 n = m.frame.to_breast(m.frame.nipple);
+  Vec3 d{0, n[1], n[2]};
+  d = (1 / norm(d)) * d;
+  m.mesh_size = o.mesh.mesh_size;
+  m.half = o.mesh.half;
+  m.mesh = mesh_scan(m.fit, m.fit.radius(d) * d, o.mesh, tag_base, tag_skin, tag_symmetry);
+  return m;
+}
+} // namespace breastsim::scan
