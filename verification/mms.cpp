@@ -95,11 +95,9 @@ std::string to_string(MmsMeshes k)
   }
 }
 
-namespace
-{
 /// The level's mesh: the case's half cap at the requested size and
 /// refinement (built on rank 0, distributed over comm).
-TaggedDolfinxMesh mms_mesh(const Config& c, int order, double mesh_size, int refinements,
+TaggedDolfinxMesh mms_level_mesh(const Config& c, int order, double mesh_size, int refinements,
                            MPI_Comm comm, MmsMeshes kind)
 {
   const bool nested = kind == MmsMeshes::nested || kind == MmsMeshes::nested_snapped;
@@ -129,14 +127,12 @@ TaggedDolfinxMesh mms_mesh(const Config& c, int order, double mesh_size, int ref
   return to_dolfinx(comm, tm, order);
 }
 
-using Constants = std::map<std::string, std::shared_ptr<fem::Constant<T>>>;
-
 /// The Constants of the forms: registry defaults, then the case's physics
 /// keys; only tissue, skin and base springs on, and the plain membrane (the
 /// relaxed tension-field energy is only C1).
-Constants mms_constants(const Config& c)
+MmsConstants mms_constants(const Config& c)
 {
-  Constants constants;
+  MmsConstants constants;
   for (const auto& p : generated::parameters())
     constants[p.name] = std::make_shared<fem::Constant<T>>(std::span<const T>(p.default_value));
   for (const auto& k : schema())
@@ -155,13 +151,15 @@ Constants mms_constants(const Config& c)
   return constants;
 }
 
+namespace
+{
 /// The forms of the MMS module on V, bound to u and the Constants; the
 /// partner fields (forms/model.py) belong to terms that are off here: zero.
 class MmsFormFactory
 {
 public:
   MmsFormFactory(std::shared_ptr<const fem::FunctionSpace> V, std::shared_ptr<fem::Function<T>> u,
-                 const Constants& constants, const TaggedDolfinxMesh& m)
+                 const MmsConstants& constants, const TaggedDolfinxMesh& m)
       : _V(std::move(V)), _constants(constants.begin(), constants.end()), _mesh(m)
   {
     _coefficients = {{"u", u}};
@@ -247,7 +245,7 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
 {
   Stopwatch stopwatch("MMS level");
   const MmsForms uf = mms_forms(order);
-  TaggedDolfinxMesh m = mms_mesh(c, order, mesh_size, refinements, comm, kind);
+  TaggedDolfinxMesh m = mms_level_mesh(c, order, mesh_size, refinements, comm, kind);
   auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, "u", m.mesh));
   auto u = std::make_shared<fem::Function<T>>(V);
   const MmsFormFactory create(V, u, mms_constants(c), m);

@@ -4,6 +4,11 @@
 // uniformly, solve R(u_h; v) = R(u_ex; v) for u_h and measure the L2 and H1
 // errors against u_ex; the observed orders should be p + 1 and p for Pp.
 #include "config.hpp"
+#include "mesh_from_gmsh.hpp"
+#include <dolfinx/fem/Constant.h>
+#include <map>
+#include <memory>
+#include <petscsystypes.h>
 #include <cstdint>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -52,6 +57,17 @@ struct MmsStudy
   /// log(e_i / e_{i+1}) / log(h_eff_i / h_eff_{i+1}); one fewer than levels.
   std::vector<double> order_l2, order_h1;
 };
+
+/// The mesh of level `refinements` of the family `kind` from `mesh_size`
+/// (the case's R and H; built on rank 0, distributed over comm).
+TaggedDolfinxMesh mms_level_mesh(const Config& c, int order, double mesh_size, int refinements,
+                                 MPI_Comm comm, MmsMeshes kind);
+
+using MmsConstants = std::map<std::string, std::shared_ptr<dolfinx::fem::Constant<PetscScalar>>>;
+/// Every UFL Constant of the model: registry defaults, then the case's
+/// physics keys; on_tissue, on_skin, on_base_springs = 1, the other
+/// switches 0; the plain membrane (skin_tension_only = 0).
+MmsConstants mms_constants(const Config& c);
 
 /// The material parameters of `c` (its physics keys; registry defaults
 /// otherwise) with gravity, sutures and the tension-field relaxation off.

@@ -2,6 +2,7 @@
 #include "tagged_mesh.hpp"
 #include "errors.hpp"
 #include "mesh_from_gmsh.hpp"
+#include "mixed_space.hpp"
 #include "residual_newton.hpp"
 #include "timer.hpp"
 #include "sphere_bench_p1.h"
@@ -115,6 +116,31 @@ SphereReference sphere_reference(const SphereBenchSpec& s, int steps)
   return ref;
 }
 
+SphereReference incompressible_sphere_reference(const SphereBenchSpec& s)
+{
+  // r^3 = R^3 + a^3 - A^3; nominal inner pressure p0 = lambda_a^2 P(a) with the
+  // Cauchy pressure P = 2 mu [1/lb - 1/la + 1/(4 lb^4) - 1/(4 la^4)].
+  auto outer = [&](double a) { return std::cbrt(std::pow(s.B, 3) + std::pow(a, 3) - std::pow(s.A, 3)); };
+  auto nominal_pressure = [&](double a)
+  {
+    const double la = a / s.A, lb = outer(a) / s.B;
+    const double P = 2 * s.mu * (1 / lb - 1 / la + 0.25 / std::pow(lb, 4) - 0.25 / std::pow(la, 4));
+    return la * la * P;
+  };
+  double lo = s.A, hi = 4 * s.A;
+  if (!(nominal_pressure(hi) > s.p0) || !(s.p0 >= 0))
+    throw std::runtime_error("incompressible_sphere_reference: p0 beyond the range a in [A, 4A]");
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * s.A; ++it)
+  {
+    const double m = 0.5 * (lo + hi);
+    (nominal_pressure(m) > s.p0 ? hi : lo) = m;
+  }
+  SphereReference ref;
+  ref.a = 0.5 * (lo + hi);
+  ref.b = outer(ref.a);
+  return ref;
+}
+
 namespace
 {
 /// The octant A <= |X| <= B, x, y, z >= 0 (rank 0), facets tagged as in
@@ -170,46 +196,63 @@ double sum_all(double local, MPI_Comm comm)
   return global;
 }
 
-void check_inputs(const SphereBenchSpec& s, int order, double mesh_size, int load_steps)
+void check_inputs(const SphereBenchSpec& s, int order, double mesh_size, int load_steps, bool mixed)
 {
+  if (mixed && (order != 2 || !(s.lambda > 0)))
+    throw InputError(fmt::format("sphere benchmark: the mixed formulation is Taylor-Hood P2-P1 with "
+                                 "lambda > 0, got order {}, lambda {}", order, s.lambda));
   if (order != 1 && order != 2)
     throw InputError(fmt::format("sphere benchmark: element order must be 1 or 2, got {}", order));
   if (!(s.A > 0 && s.B > s.A && mesh_size > 0 && load_steps >= 1))
     throw InputError("sphere benchmark: need 0 < A < B, mesh_size > 0, load_steps >= 1");
 }
 
-/// The compiled forms of verification/forms/sphere_bench.py for P1 or P2.
+/// The compiled forms of verification/forms/sphere_bench.py for P1, P2 or
+/// the mixed P2-P1 (coefficient "w").
 struct SphereForms
 {
   ufcx_function_space* (*space)(const char*);
+  const char* coefficient;
   ufcx_form *residual, *jacobian, *ur_inner, *area_inner, *ur_outer, *area_outer;
 };
 
-SphereForms sphere_forms(int order)
+SphereForms sphere_forms(int order, bool mixed)
 {
+  if (mixed)
+    return {functionspace_form_sphere_bench_p2_mixed_residual, "w", form_sphere_bench_p2_mixed_residual,
+            form_sphere_bench_p2_mixed_jacobian, form_sphere_bench_p2_mixed_ur_inner,
+            form_sphere_bench_p2_bench_area_inner, form_sphere_bench_p2_mixed_ur_outer,
+            form_sphere_bench_p2_bench_area_outer};
   if (order == 1)
-    return {functionspace_form_sphere_bench_p1_bench_residual, form_sphere_bench_p1_bench_residual,
+    return {functionspace_form_sphere_bench_p1_bench_residual, "u", form_sphere_bench_p1_bench_residual,
             form_sphere_bench_p1_bench_jacobian, form_sphere_bench_p1_bench_ur_inner,
             form_sphere_bench_p1_bench_area_inner, form_sphere_bench_p1_bench_ur_outer,
             form_sphere_bench_p1_bench_area_outer};
-  return {functionspace_form_sphere_bench_p2_bench_residual, form_sphere_bench_p2_bench_residual,
+  return {functionspace_form_sphere_bench_p2_bench_residual, "u", form_sphere_bench_p2_bench_residual,
           form_sphere_bench_p2_bench_jacobian, form_sphere_bench_p2_bench_ur_inner,
           form_sphere_bench_p2_bench_area_inner, form_sphere_bench_p2_bench_ur_outer,
           form_sphere_bench_p2_bench_area_outer};
 }
 
-/// Sliding symmetry: u_i = 0 on the plane x_i = 0.
+/// Sliding symmetry: u_i = 0 on the plane x_i = 0 (of the mixed space:
+/// component i of its displacement, src/model/mixed_space.hpp).
 std::vector<std::shared_ptr<const fem::DirichletBC<T>>> symmetry_bcs(const fem::FunctionSpace& V,
+                                                                     bool mixed,
                                                                      const TaggedDolfinxMesh& m)
 {
   std::vector<std::shared_ptr<const fem::DirichletBC<T>>> bcs;
   for (int i = 0; i < 3; ++i)
   {
-    auto Vi = V.sub({i});
     std::vector<std::int32_t> facets;
     for (std::size_t k = 0; k < m.facets->values().size(); ++k)
       if (m.facets->values()[k] == tag_plane_x + i)
         facets.push_back(m.facets->indices()[k]);
+    if (mixed)
+    {
+      bcs.push_back(mixed_displacement_bc(V, facets, i));
+      continue;
+    }
+    auto Vi = V.sub({i});
     auto dofs = fem::locate_dofs_topological(*Vi, 2, facets);
     bcs.push_back(std::make_shared<const fem::DirichletBC<T>>(T(0), std::move(dofs), Vi));
   }
@@ -249,10 +292,10 @@ int apply_pressure(ResidualNewton& newton, fem::Constant<T>& p0, const SphereBen
 } // namespace
 
 SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double mesh_size,
-                                     MPI_Comm comm, int load_steps)
+                                     MPI_Comm comm, int load_steps, bool mixed)
 {
   Stopwatch stopwatch("sphere benchmark");
-  check_inputs(s, order, mesh_size, load_steps);
+  check_inputs(s, order, mesh_size, load_steps, mixed);
   int rank;
   MPI_Comm_rank(comm, &rank);
   meshes::TaggedMesh tm;
@@ -261,8 +304,9 @@ SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double
     tm = octant_shell(s, order, mesh_size);
   TaggedDolfinxMesh m = to_dolfinx(comm, tm, order);
 
-  const SphereForms forms = sphere_forms(order);
-  auto V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(forms.space, "u", m.mesh));
+  const SphereForms forms = sphere_forms(order, mixed);
+  auto V = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(forms.space, forms.coefficient, m.mesh));
   auto u = std::make_shared<fem::Function<T>>(V);
   auto p0 = std::make_shared<fem::Constant<T>>(0.0);
   const std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants{
@@ -273,10 +317,11 @@ SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double
   {
     std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank_, V);
     return std::make_shared<fem::Form<T>>(fem::create_form<T>(
-        *f, spaces, {{"u", u}}, constants, {{fem::IntegralType::exterior_facet, m.facets.get()}},
+        *f, spaces, {{forms.coefficient, u}}, constants, {{fem::IntegralType::exterior_facet, m.facets.get()}},
         m.mesh));
   };
-  ResidualNewton newton(create(forms.residual, 1), create(forms.jacobian, 2), u, symmetry_bcs(*V, m));
+  ResidualNewton newton(create(forms.residual, 1), create(forms.jacobian, 2), u,
+                        symmetry_bcs(*V, mixed, m));
 
   SphereBenchResult res;
   res.newton_iterations = apply_pressure(newton, *p0, s, order, load_steps);

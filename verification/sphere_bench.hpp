@@ -30,6 +30,16 @@ struct SphereReference
 };
 SphereReference sphere_reference(const SphereBenchSpec& s, int steps = 4000);
 
+/// The incompressible limit (lambda -> infinity) of the same problem in
+/// closed form: the isochoric radial map r(R) = (R^3 + a^3 - A^3)^(1/3),
+/// and the radial equilibrium integrated from b to a for the neo-Hookean
+/// law (eq. 5 at J = 1: W = mu/2 (I1 - 3)), with hoop stretch l = r/R,
+///   P(a) = int_lb^la W'(l) / (l^3 - 1) dl = 2 mu [1/lb - 1/la + 1/(4 lb^4) - 1/(4 la^4)]
+/// (Cauchy pressure on the deformed inner surface). The dead nominal load
+/// gives p0 = la^2 P(a); a solved by bisection. Throws std::runtime_error
+/// if p0 needs a > 4A.
+SphereReference incompressible_sphere_reference(const SphereBenchSpec& s);
+
 struct SphereBenchResult
 {
   std::int64_t cells = 0, dofs = 0;
@@ -40,7 +50,9 @@ struct SphereBenchResult
 
 /// The octant mesh of the shell by gmsh (target size mesh_size; P2:
 /// curved 10-node cells), symmetry planes sliding, the pressure applied in
-/// `load_steps` equal increments, Newton (LU) at each. Collective.
+/// `load_steps` equal increments, Newton (LU) at each. mixed: the
+/// Taylor-Hood P2-P1 (u, p) formulation (order 2, lambda > 0; InputError
+/// otherwise). Collective.
 SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double mesh_size,
-                                     MPI_Comm comm, int load_steps = 4);
+                                     MPI_Comm comm, int load_steps = 4, bool mixed = false);
 } // namespace breastsim

@@ -133,7 +133,7 @@ LevelValues solve_preop_level(const Config& c, MPI_Comm comm, std::int64_t& cell
   const CaseOptions case_options = CaseOptions::from(c);
   Model model(refine == ConvergeRefinement::red ? red_refined_cap(c, comm)
                                                 : build_neutral_mesh(c, comm),
-              Constraints{true, case_options.fixed_base});
+              Constraints{true, case_options.fixed_base}, case_options.formulation);
   apply_parameters(c, model);
   NewtonSolver newton(model, NewtonOptions::from(c));
   ObservableProbe probe(model, {0, case_options.geometry.H, 0});
@@ -331,9 +331,9 @@ for s in d.get("studies", []):
             ax.loglog(*zip(*pts), "o-", label=f"P{s['element_order']} {name} (p={q['observed_order']:.2f})")
 for s in d.get("mms", []):
     hrel = [L["h_eff"] / s["levels"][0]["h_eff"] for L in s["levels"]]
-    p = s["element_order"]
-    ax.loglog(hrel, [L["relative_error_l2"] for L in s["levels"]], "s-", label=f"MMS P{p} L2")
-    ax.loglog(hrel, [L["relative_error_h1"] for L in s["levels"]], "^-", label=f"MMS P{p} H1")
+    p = s.get("formulation", "") + f" P{s['element_order']}"
+    ax.loglog(hrel, [L["relative_error_l2"] for L in s["levels"]], "s-", label=f"MMS {p} L2")
+    ax.loglog(hrel, [L["relative_error_h1"] for L in s["levels"]], "^-", label=f"MMS {p} H1")
 ax.set_xlabel("relative mesh size h / h0")
 ax.set_ylabel("relative error (|q - q_Richardson| / |q_Richardson|, or MMS error)")
 ax.grid(True, which="both", alpha=0.3)

@@ -136,6 +136,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
 {
   SimulationResult res;
   const CaseOptions case_options = CaseOptions::from(c);
+  check_tissue_formulation(c); // e.g. a mixed case needs P2: refused before the mesh
   check_picture_tools(comm); // fail before the solves, not after
   auto mesh = [&]
   {
@@ -150,7 +151,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
             res.quality.num_cells, mesh.degree, res.quality.min_dihedral_deg,
             res.quality.max_dihedral_deg, res.quality.min_radius_ratio, res.mesh_seconds);
 
-  Model model(mesh, Constraints{true, case_options.fixed_base});
+  Model model(mesh, Constraints{true, case_options.fixed_base}, case_options.formulation);
   apply_parameters(c, model);
   res.dofs = model.num_dofs();
   res.linear_solver = resolved_linear_solver(NewtonOptions::from(c), res.dofs);
@@ -164,7 +165,8 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
               return s;
             }());
 
-  const auto coarse = make_coarse_start(c, model);
+  // Grid sequencing interpolates displacement levels: not for the mixed state.
+  const auto coarse = model.mixed() ? nullptr : make_coarse_start(c, model);
   if (coarse)
   {
     res.coarse_dofs = coarse->coarse_dofs();
@@ -181,6 +183,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   j["mesh"]["order"] = mesh.degree;
   j["mesh"]["wall_time_s"] = res.mesh_seconds;
   j["unknowns"] = res.dofs;
+  j["tissue_formulation"] = to_string(case_options.formulation);
   j["linear_solver"] = res.linear_solver;
   if (coarse)
   {

@@ -1,6 +1,7 @@
 #include "model.hpp"
 #include "ghosted_assembly.hpp"
 #include "breastsim_registry.hpp"
+#include "breastsim_mixed_registry.hpp"
 #include "errors.hpp"
 #include "petsc.hpp"
 #include "composite_form.hpp"
@@ -31,15 +32,20 @@ struct Table
 };
 } // namespace
 
-Model::Model(TaggedDolfinxMesh mesh, Constraints constraints)
+Model::Model(TaggedDolfinxMesh mesh, Constraints constraints, TissueFormulation formulation)
     : _mesh(std::move(mesh)), _constraints(constraints)
 {
   auto factory = generated::function_space(_mesh.degree);
   if (!factory)
     throw InputError(fmt::format("element order {} is not compiled in (available: 1, 2)",
                                  _mesh.degree));
-  _V = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(factory, "u", _mesh.mesh));
+  if (formulation == TissueFormulation::mixed)
+  {
+    _mixed = std::make_shared<MixedState>(_mesh);
+    _state_bcs = _mixed->bcs(_mesh, _constraints.symmetry, _constraints.fixed_base);
+  }
+  _V = _mixed ? _mixed->displacement_space()
+              : std::make_shared<fem::FunctionSpace>(fem::create_functionspace(factory, "u", _mesh.mesh));
   _u = std::make_shared<fem::Function<T>>(_V);
   _u->name = "displacement";
 
@@ -65,9 +71,11 @@ Model::Model(TaggedDolfinxMesh mesh, Constraints constraints)
         std::vector<T>{0, 0, 0}, std::move(dofs), _V));
   }
 
-  // Partner fields: their Coefficients must exist before any form is created.
+  // Partner fields: their Coefficients must exist before any form is created
+  // (their terms have no mixed forms).
   for (const auto& p : generated::partners())
-    _partners.push_back(std::make_shared<PartnerField>(p, _V));
+    if (!_mixed)
+      _partners.push_back(std::make_shared<PartnerField>(p, _V));
   for (auto& p : _partners)
   {
     const std::string& t = p->info().term;
@@ -79,15 +87,25 @@ Model::Model(TaggedDolfinxMesh mesh, Constraints constraints)
   forms("");
 }
 
+ufcx_form* Model::mixed_form(const std::string& name) const
+{
+  return _mixed ? generated::mixed_form(name) : nullptr;
+}
+
 std::shared_ptr<fem::Form<T>> Model::create(const std::string& name, int rank)
 {
-  ufcx_form* f = generated::form(name, _mesh.degree);
+  // Mixed: the terms' forms on W (coefficient w); the term-free forms
+  // (volume, areas) on the displacement space.
+  ufcx_form* mixed = mixed_form(name);
+  ufcx_form* f = mixed ? mixed : generated::form(name, _mesh.degree);
   if (!f)
     throw std::logic_error("no compiled form " + name);
   std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants(_constants.begin(),
                                                                             _constants.end());
-  std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, _V);
+  std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, mixed ? _mixed->W() : _V);
   std::map<std::string, std::shared_ptr<const fem::Function<T>>> coefficients = {{"u", _u}};
+  if (mixed)
+    coefficients = {{"w", _mixed->w()}};
   for (const auto& p : _partners)
     coefficients[p->info().coefficient] = p->field();
   return std::make_shared<fem::Form<T>>(fem::create_form<T>(
@@ -104,6 +122,9 @@ Model::FormSet& Model::forms(const std::string& term)
   {
     if (!_constants.count("on_" + term))
       throw InputError("unknown energy term '" + term + "'");
+    if (_mixed && !mixed_form("energy_" + term))
+      throw InputError(fmt::format("energy term '{}' has no mixed form: not available with "
+                                   "tissue.formulation = \"mixed\"", term));
     FormSet s{create("energy_" + term, 0), create("residual_" + term, 1),
               create("jacobian_" + term, 2)};
     return _forms.emplace(term, s).first->second;
@@ -112,6 +133,8 @@ Model::FormSet& Model::forms(const std::string& term)
   std::vector<SwitchedForm> energy, residual, jacobian;
   for (const auto& t : generated::terms())
   {
+    if (_mixed && !mixed_form("energy_" + t.name))
+      continue; // switched off (set_term refuses it)
     const FormSet& f = forms(t.name);
     auto on = _constants.at("on_" + t.name);
     energy.push_back({f.energy, on});
@@ -155,6 +178,9 @@ void Model::set_term(const std::string& term, bool on)
   auto it = _constants.find("on_" + term);
   if (it == _constants.end())
     throw InputError("unknown energy term '" + term + "'");
+  if (on && _mixed && !mixed_form("energy_" + term))
+    throw InputError(fmt::format("key 'tissue.formulation' = \"mixed\" with terms.{} = true: the "
+                                 "term has a partner field and no mixed form", term));
   it->second->value = {on ? 1.0 : 0.0};
 }
 
@@ -184,6 +210,8 @@ std::vector<std::int32_t> Model::boundary_nodes(const std::string& tag) const
 
 std::int64_t Model::num_dofs() const
 {
+  if (_mixed)
+    return _mixed->num_dofs();
   return _V->dofmap()->index_map->size_global() * _V->dofmap()->index_map_bs();
 }
 
@@ -221,8 +249,27 @@ const PartnerField& Model::partner(const std::string& term)
   throw InputError("energy term '" + term + "' has no partner field");
 }
 
+void Model::pull_state()
+{
+  if (_mixed)
+    _mixed->pull(*_u);
+}
+
+double Model::mean_pressure()
+{
+  if (!_mixed)
+    throw std::logic_error("mean_pressure: the model has no pressure (displacement formulation)");
+  pull_state();
+  double local[2] = {fem::assemble_scalar(*create("pressure_integral", 0)),
+                     fem::assemble_scalar(*create("reference_volume", 0))};
+  double global[2];
+  MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
+  return global[0] / global[1]; // int p dV / int 1 dV
+}
+
 double Model::energy(const std::string& term)
 {
+  pull_state();
   update_partners(term);
   double local = fem::assemble_scalar(*forms(term).energy), global = 0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _mesh.mesh->comm());
@@ -267,15 +314,19 @@ double Model::min_detF()
 
 void Model::set_displacement(Vec x)
 {
-  PetscVec ux(la::petsc::create_vector_wrap(*_u->x()));
+  auto state = this->state();
+  PetscVec ux(la::petsc::create_vector_wrap(*state->x()));
   if (x != ux.get())
     PETSC_CHECK(VecCopy(x, ux.get()));
-  _u->x()->scatter_fwd();
+  state->x()->scatter_fwd();
+  if (_mixed)
+    _mixed->push(*_u);
 }
 
 void Model::assemble_residual(Vec b, const std::string& term)
 {
   FormSet& f = forms(term);
+  pull_state();
   update_partners(term);
   assemble_ghosted(b, *f.residual);
   // Partner fields: the chain rule through w = P u, b += on_k P^T E_w.
@@ -298,8 +349,8 @@ void Model::constrain_displacement()
 
 void Model::set_constrained_entries(Vec b, double scale) const
 {
-  PetscVec ux(la::petsc::create_vector_wrap(*_u->x()));
-  fem::petsc::set_bc(b, _bcs, ux.get(), scale); // b = scale (g - u) on constrained dofs
+  PetscVec ux(la::petsc::create_vector_wrap(*(_mixed ? _mixed->w() : _u)->x()));
+  fem::petsc::set_bc(b, state_bcs(), ux.get(), scale); // b = scale (g - u) on constrained dofs
 }
 
 double Model::residual_norm(const std::string& term)
@@ -314,6 +365,7 @@ double Model::residual_norm(const std::string& term)
 void Model::assemble_jacobian(Mat A, const std::string& term)
 {
   FormSet& f = forms(term);
+  pull_state();
   update_partners(term);
   PETSC_CHECK(MatZeroEntries(A));
   // Straight into the CSR values once the pattern of A is known (AIJ; under
@@ -323,7 +375,7 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
   if (fast)
     assemble_recorded(A, *f.jacobian);
   else
-    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, _bcs);
+    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A, ADD_VALUES), *f.jacobian, state_bcs());
   // Partner fields: A += on_k (E_uw P + P^T E_wu + P^T E_ww P), constrained
   // rows and columns excluded; added before the first final assembly so that
   // PETSc keeps these entries in the matrix structure.
@@ -335,7 +387,8 @@ void Model::assemble_jacobian(Mat A, const std::string& term)
     }
   PETSC_CHECK(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY));
   PETSC_CHECK(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY));
-  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *_V, _bcs);
+  fem::set_diagonal<T>(la::petsc::Matrix::set_fn(A, INSERT_VALUES), *(_mixed ? _mixed->W() : _V),
+                       state_bcs());
   PETSC_CHECK(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PETSC_CHECK(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   if (!fast)
@@ -349,7 +402,7 @@ void Model::assemble_recorded(Mat A, const fem::Form<T>& jacobian)
   {
     fem::assemble_matrix([this](auto rows, auto cols, auto vals)
                          { _jacobian_adder.add(rows, cols, vals); return 0; },
-                         jacobian, _bcs);
+                         jacobian, state_bcs());
   }
   catch (...)
   {
@@ -357,32 +410,6 @@ void Model::assemble_recorded(Mat A, const fem::Form<T>& jacobian)
     throw;
   }
   _jacobian_adder.end(A);
-}
-
-void Model::add_scaled(Mat A, Mat K, double s) const
-{
-  // Entries outside the preallocation (a matrix created while the term was
-  // off) are allocated.
-  PETSC_CHECK(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
-  PetscInt r0, r1;
-  PETSC_CHECK(MatGetOwnershipRange(K, &r0, &r1));
-  std::vector<PetscInt> cols;
-  std::vector<PetscScalar> vals;
-  for (PetscInt r = r0; r < r1; ++r)
-  {
-    // Row r of K copied (and scaled) before it is given back to PETSc.
-    PetscInt n;
-    const PetscInt* c;
-    const PetscScalar* v;
-    PETSC_CHECK(MatGetRow(K, r, &n, &c, &v));
-    cols.assign(c, c + n);
-    vals.assign(v, v + n);
-    PETSC_CHECK(MatRestoreRow(K, r, &n, &c, &v));
-    for (auto& x : vals)
-      x *= s;
-    PETSC_CHECK(MatSetValues(A, 1, &r, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(),
-                             ADD_VALUES));
-  }
 }
 
 std::vector<std::int8_t> Model::constrained_markers() const
@@ -418,58 +445,9 @@ Mat Model::create_matrix()
   return A.release();
 }
 
-void Model::insert_block_pattern(la::SparsityPattern& pattern, Mat K)
-{
-  // Block row r / 3 couples with the blocks cols / 3 of row r (serial
-  // (partner fields): local = global indices).
-  PetscInt r0, r1;
-  PETSC_CHECK(MatGetOwnershipRange(K, &r0, &r1));
-  for (PetscInt r = r0; r < r1; ++r)
-  {
-    PetscInt n;
-    const PetscInt* cols;
-    PETSC_CHECK(MatGetRow(K, r, &n, &cols, nullptr));
-    std::vector<std::int32_t> row = {static_cast<std::int32_t>(r / 3)}, blocks;
-    for (PetscInt k = 0; k < n; ++k)
-      blocks.push_back(static_cast<std::int32_t>(cols[k] / 3));
-    PETSC_CHECK(MatRestoreRow(K, r, &n, &cols, nullptr));
-    std::sort(blocks.begin(), blocks.end());
-    blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
-    pattern.insert(row, blocks);
-  }
-}
-
-void Model::insert_pattern(Mat A, const la::SparsityPattern& pattern) const
-{
-  // Zeros at every entry of the pattern, one block row at a time (global,
-  // sorted columns: PETSc appends instead of searching), then the final
-  // assembly that makes the CSR structure.
-  const auto& graph = pattern.graph();
-  const std::vector<std::int64_t> global_cols = pattern.column_index_map().global_indices();
-  const std::int64_t row0 = pattern.index_map(0)->local_range()[0];
-  const int bs = pattern.block_size(0);
-  std::vector<PetscInt> cols;
-  std::vector<PetscScalar> zeros;
-  // Owned rows only: assemble() has sent the ghost rows' entries to their owners.
-  const std::int32_t owned = pattern.index_map(0)->size_local();
-  for (std::int32_t i = 0; i < owned; ++i)
-  {
-    auto links = graph.links(i);
-    cols.resize(links.size());
-    for (std::size_t k = 0; k < links.size(); ++k)
-      cols[k] = static_cast<PetscInt>(global_cols[links[k]]);
-    std::sort(cols.begin(), cols.end());
-    zeros.assign(bs * bs * cols.size(), 0.0);
-    const PetscInt row = static_cast<PetscInt>(row0 + i);
-    PETSC_CHECK(MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
-                                    zeros.data(), INSERT_VALUES));
-  }
-  PETSC_CHECK(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PETSC_CHECK(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-}
-
 Vec Model::create_vector() const
 {
-  return la::petsc::create_vector(*_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
+  const auto& space = _mixed ? *_mixed->W() : *_V;
+  return la::petsc::create_vector(*space.dofmap()->index_map, space.dofmap()->index_map_bs());
 }
 } // namespace breastsim

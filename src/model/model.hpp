@@ -6,6 +6,7 @@
 #include "mesh_from_gmsh.hpp"
 #include "block_csr_adder.hpp"
 #include "partner_field.hpp"
+#include "mixed_state.hpp"
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/DirichletBC.h>
@@ -32,7 +33,10 @@ struct Constraints
 class Model
 {
 public:
-  Model(TaggedDolfinxMesh mesh, Constraints constraints = {});
+  /// formulation mixed: the Taylor-Hood (u, p) state (src/model/mixed_state.hpp;
+  /// element degree 2), every term from its mixed forms.
+  Model(TaggedDolfinxMesh mesh, Constraints constraints = {},
+        TissueFormulation formulation = TissueFormulation::displacement);
 
   // -- Parameters and terms (runtime; never recompiles) --
   /// Set UFL Constant `name` (see forms/*.py). Throws on unknown name/size.
@@ -40,7 +44,8 @@ public:
   std::vector<double> parameter(const std::string& name) const;
   /// Names of all runtime parameters (UFL Constants except switches).
   std::vector<std::string> parameter_names() const;
-  /// Switch a registered energy term on or off.
+  /// Switch a registered energy term on or off (mixed: InputError naming
+  /// tissue.formulation for a term without mixed forms switched on).
   void set_term(const std::string& term, bool on);
   bool term_on(const std::string& term) const;
   std::vector<std::string> term_names() const;
@@ -50,6 +55,13 @@ public:
   std::shared_ptr<const dolfinx::fem::FunctionSpace> space() const { return _V; }
   std::shared_ptr<dolfinx::fem::Function<T>> displacement() { return _u; }
   std::shared_ptr<const dolfinx::fem::Function<T>> displacement() const { return _u; }
+  /// The Newton unknown: the displacement, or (mixed) w = (u, p); vectors of
+  /// create_vector(), set_displacement() and the Jacobian have its layout.
+  /// A change of displacement() reaches w's u part at the next assembly.
+  std::shared_ptr<dolfinx::fem::Function<T>> state() { return _mixed ? _mixed->w() : _u; }
+  bool mixed() const { return _mixed != nullptr; }
+  /// Mean pressure int p dV / V over the reference body [Pa] (mixed only).
+  double mean_pressure();
   const std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>>& bcs() const
   {
     return _bcs;
@@ -58,7 +70,7 @@ public:
   /// Local nodes (blocked dof indices, owned and ghost) on a tagged boundary
   /// part, sorted.
   std::vector<std::int32_t> boundary_nodes(const std::string& tag) const;
-  /// Global number of displacement unknowns.
+  /// Global number of unknowns of the state (displacement, or u and p).
   std::int64_t num_dofs() const;
 
   // -- Assembly (collective) --
@@ -92,9 +104,9 @@ public:
   /// A matrix with the sparsity of the Jacobian (AIJ, block size 3), its
   /// pattern inserted (zeros) and recorded for fast assembly. Caller owns.
   Mat create_matrix();
-  /// A ghosted vector of the displacement layout. Caller owns.
+  /// A ghosted vector of the state's layout. Caller owns.
   Vec create_vector() const;
-  /// Copy a PETSc vector of the displacement layout into u (ghosts updated).
+  /// Copy a PETSc vector of the state's layout into the state and u (ghosts updated).
   void set_displacement(Vec x);
 
   // -- Partner fields (src/model/partner_field.hpp) --
@@ -125,6 +137,15 @@ private:
   void insert_pattern(Mat A, const dolfinx::la::SparsityPattern& pattern) const;
   /// b = scale (g - u) on the constrained dofs.
   void set_constrained_entries(Vec b, double scale) const;
+  /// The constraints on the state (mixed: on W; else _bcs).
+  const std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>>& state_bcs() const
+  {
+    return _mixed ? _state_bcs : _bcs;
+  }
+  /// Mixed: w's displacement part = u (before an assembly).
+  void pull_state();
+  /// Mixed: the compiled form of `name` on W, or nullptr (a displacement form).
+  ufcx_form* mixed_form(const std::string& name) const;
 
   TaggedDolfinxMesh _mesh;
   Constraints _constraints;
@@ -136,6 +157,8 @@ private:
   std::shared_ptr<dolfinx::fem::Expression<T>> _detF; // det F at the element nodes
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> _bcs;
   std::vector<std::shared_ptr<PartnerField>> _partners;
+  std::shared_ptr<MixedState> _mixed; ///< nullptr: displacement formulation
+  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> _state_bcs; ///< mixed: on W
   BlockCsrAdder _jacobian_adder{3}; ///< fast insertion once a matrix's pattern is known
 };
 } // namespace breastsim

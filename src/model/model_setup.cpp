@@ -2,11 +2,19 @@
 #include "case_options.hpp"
 #include "neutral_mesh.hpp"
 #include "term_switches.hpp"
+#include "errors.hpp"
+#include <fmt/format.h>
 
 namespace breastsim
 {
 void apply_parameters(const Config& c, Model& model)
 {
+  check_tissue_formulation(c);
+  if ((CaseOptions::from(c).formulation == TissueFormulation::mixed) != model.mixed())
+    throw InputError(fmt::format("key 'tissue.formulation' = \"{}\": this command builds {} models "
+                                 "only (the mixed formulation runs in simulate and converge)",
+                                 to_string(CaseOptions::from(c).formulation),
+                                 model.mixed() ? "mixed" : "displacement"));
   for (const auto& k : schema())
   {
     if (k.ufl_name.empty())

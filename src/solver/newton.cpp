@@ -32,7 +32,8 @@ NewtonSolver::NewtonSolver(Model& model, NewtonOptions options)
       _r(_model.create_vector()), _du(_model.create_vector()), _u0(_model.create_vector()),
       _lin(_model.create_vector())
 {
-  _linear = resolved_linear_solver(_opt, _model.num_dofs());
+  // The mixed formulation's saddle-point system: LU (no AMG for it here).
+  _linear = _model.mixed() ? "direct" : resolved_linear_solver(_opt, _model.num_dofs());
   setup_ksp();
 }
 
@@ -326,6 +327,11 @@ NewtonSolver::Direction NewtonSolver::direction(double eta, std::string& msg)
     d.descent = d.slope < 0;
   };
   solve_and_test();
+  if (_model.mixed())
+  {
+    d.descent = d.solved; // a saddle point: no descent to test, no shift (see residual_line_search)
+    return d;
+  }
   for (double sigma = 1e-2; !d.descent && sigma <= 1e2; sigma *= 10)
   {
     d.shifted = true;
@@ -406,7 +412,9 @@ NewtonSolver::Outcome NewtonSolver::iterate(Vec u, State& s, NewtonReport& rep, 
     return Outcome::stop;
   }
 
-  const double t_search = timed("newton: line search", [&] { record.step = line_search(u, d.slope, s); });
+  const double t_search = timed("newton: line search", [&] {
+    record.step = _model.mixed() ? residual_line_search(u, s.rnorm, s.energy) : line_search(u, d.slope, s);
+  });
   if (record.step == 0)
   {
     if (s.eta <= exact_rtol())
@@ -441,7 +449,7 @@ NewtonSolver::Outcome NewtonSolver::iterate(Vec u, State& s, NewtonReport& rep, 
 NewtonReport NewtonSolver::solve(double reference_norm)
 {
   NewtonReport rep;
-  PetscVec u(dolfinx::la::petsc::create_vector_wrap(*_model.displacement()->x()));
+  PetscVec u(dolfinx::la::petsc::create_vector_wrap(*_model.state()->x()));
   State s;
   s.tol = rep.tolerance = std::max(_opt.atol, _opt.rtol * reference_norm);
   s.rnorm = rep.initial_residual_norm = residual_norm();

@@ -2,7 +2,9 @@
 // Newton's method for the total energy of a Model: PETSc KSP for the linear
 // systems (MUMPS LU or GMRES + GAMG with the rigid-body near-nullspace, any
 // PETSc option overrides), and a backtracking line search that never accepts
-// an inverted element (det F <= 0) nor an energy increase.
+// an inverted element (det F <= 0) nor an energy increase. For the mixed
+// (u, p) formulation (a saddle point): MUMPS LU of the indefinite system,
+// no diagonal shift, and the line search on the residual norm.
 #include "config.hpp"
 #include "model.hpp"
 #include "petsc.hpp"
@@ -114,6 +116,10 @@ private:
   /// Backtracking from u along _du: the accepted step (energy updated in
   /// `s`), or 0 with u restored.
   double line_search(Vec u, double slope, State& s);
+  /// The same for a saddle point (the mixed formulation, whose Lagrangian
+  /// has no minimum): backtracking on |r| from |r(u)| = rnorm
+  /// (newton_saddle.cpp); `energy` set at the accepted step.
+  double residual_line_search(Vec u, double rnorm, double& energy);
   /// Top of an iteration: true when the solve stops here (converged, or a
   /// non-finite residual or energy).
   bool stop_test(const State& s, NewtonReport& rep) const;

@@ -20,6 +20,7 @@ PostureResult solve_from(Model& model, NewtonSolver& newton, const ObservablePro
   const std::string context = fmt::format("posture '{}' (theta = {:g} deg)", posture.name, posture.theta_deg);
   // Each posture starts from the neutral state (or from the guess).
   model.displacement()->x()->set(0.0);
+  model.state()->x()->set(0.0); // mixed: the pressure too (else the same field)
   const double g = CaseOptions::from(c).gravity;
   const double f_ext = set_gravity(model, gravity_vector(posture.theta_deg, g));
   start = solve_at_full_load(model, newton, guess, LoadStepOptions::from(c), context, f_ext);
