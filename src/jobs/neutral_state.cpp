@@ -103,7 +103,8 @@ nlohmann::json to_json(const NeutralStateResult& r)
                   {"omega", i.omega}, {"newton_iterations", i.newton_iterations}});
   return {{"posture", r.posture.name}, {"theta_deg", r.posture.theta_deg},
           {"converged", r.inverse.converged}, {"iterations", it}, {"wall_time_s", r.inverse.seconds},
-          {"nipple_neutral_m", r.nipple}, {"max_node_shift_m", r.max_node_shift}};
+          {"nipple_neutral_m", r.nipple}, {"max_node_shift_m", r.max_node_shift},
+          {"reference_shift_x_m", r.shift_x}};
 }
 } // namespace
 
@@ -132,8 +133,18 @@ NeutralStateResult neutral_state(const Config& c, const Posture& posture, const 
     for (std::size_t i = 0; i < x.size(); ++i)
       r.max_node_shift = std::max(r.max_node_shift, std::abs(x[i] - loaded.x[i]));
     loaded.x = x;
-    r.nipple = {x[3 * nipple], x[3 * nipple + 1], x[3 * nipple + 2]};
+    // A full breast (no symmetry face) may move its nipple off x = 0: the
+    // reference is moved along x to keep it in the sagittal plane x = 0
+    // (a rigid shift: its loaded shapes move with it).
+    if (surface_names(loaded).count(generated::tag("symmetry")) == 0)
+    {
+      r.shift_x = -x[3 * nipple];
+      for (std::size_t n = 0; n < loaded.num_nodes(); ++n)
+        loaded.x[3 * n] += r.shift_x;
+    }
+    r.nipple = {loaded.x[3 * nipple], loaded.x[3 * nipple + 1], loaded.x[3 * nipple + 2]};
   }
+  MPI_Bcast(&r.shift_x, 1, MPI_DOUBLE, 0, comm);
   std::string fold; // rank 0's SolveError, thrown on every rank
   if (rank_of(comm) == 0)
     try

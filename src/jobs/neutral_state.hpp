@@ -4,7 +4,9 @@
 // case's material and gravity deform into it is found by inverse
 // elastostatics (solver/inverse_neutral_state.hpp) and written as a tagged
 // mesh with a case that uses it.
-//   reference.msh         the neutral (stress-free) mesh, groups tissue/base/skin/symmetry
+//   reference.msh         the neutral (stress-free) mesh, groups tissue/base/skin (symmetry
+//                         for a half model; a full breast is shifted along x to keep its
+//                         nipple on x = 0, summary.json: reference_shift_x_m)
 //   case.reference.toml   the case with geometry.mesh_file = "reference.msh" and
 //                         the nipple (geometry.H, geometry.nipple_z) moved with it
 //   summary.json          iterations (mismatch RMS/max, relaxation, Newton), time
@@ -24,6 +26,7 @@ struct NeutralStateResult
   InverseReport inverse;
   std::array<double, 3> nipple{};  ///< the nipple in the neutral state [m]
   double max_node_shift = 0;       ///< largest |X - x_s| over the nodes [m]
+  double shift_x = 0;              ///< full breast: x shift that keeps the nipple on x = 0 [m]
 };
 
 /// The whole job; writes into `out` (replaced only on success).

@@ -3,6 +3,7 @@
 #include "scan_format_readers.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -27,6 +28,22 @@ std::string read_bytes(const fs::path& path, const std::string& where)
   std::ostringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();
+}
+
+/// Three numbers x y z from `in` (strtod: "nan" and "inf" are read, and refused later by the checks).
+bool read_point(std::istringstream& in, Vec3& p)
+{
+  for (double& v : p)
+  {
+    std::string w;
+    if (!(in >> w))
+      return false;
+    char* end = nullptr;
+    v = std::strtod(w.c_str(), &end);
+    if (end == w.c_str() || *end != '\0')
+      return false;
+  }
+  return true;
 }
 
 /// The STL corners merged into points by equal coordinates.
@@ -91,7 +108,7 @@ void read_stl_ascii(const std::string& b, const std::string& where, ScanSurface&
     if (!(words >> word) || word != "vertex")
       continue;
     Vec3& p = c[corner];
-    if (!(words >> p[0] >> p[1] >> p[2]))
+    if (!read_point(words, p))
       throw InputError(fmt::format("{}: line {}: a vertex needs three numbers: '{}'", where, number, line));
     if (++corner == 3)
     {
@@ -140,7 +157,7 @@ void read_obj(const std::string& b, const std::string& where, ScanSurface& s)
     if (key == "v")
     {
       Vec3 p;
-      if (!(words >> p[0] >> p[1] >> p[2]))
+      if (!read_point(words, p))
         throw InputError(fmt::format("{}: line {}: a vertex needs three numbers: '{}'", where, number, line));
       s.points.push_back(p);
     }

@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# `breastsim scan-model` (docs/SCANS.md): every bad scan or option is refused
+# with exit code 2, a message naming the defect and no output folder; a
+# spherical cap's scan and a synthetic patient's (holes, 0.5 mm noise) go
+# scan -> scan-model -> neutral-state -> simulate and reproduce the scanned
+# skin (bench/scan_compare.py: loaded_rms_mm < 0.1 off the chest, the
+# reference within 1 mm of the truth).
+# Usage: scan_model.sh BREASTSIM SOURCE_DIR
+set -eu -o pipefail
+BIN="$1"; SRC="$2"; PY=/usr/bin/python3
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+cd "$work"
+"$BIN" -q synthetic-patient --volume 400 --ptosis 0.3 --lateral 0.1 --asymmetry 0.15 --mesh-size 0.01 \
+  --format stl-ascii --out patient >patient.log
+[ -s patient/scan.stl ] || { echo "FAIL: no synthetic scan"; exit 1; }
+
+# Bad scans, written from the good one.
+$PY - <<'PY'
+import re, struct
+text = open("patient/scan.stl").read()
+facets = re.findall(r"facet normal.*?endfacet\n", text, re.S)
+head, tail = "solid s\n", "endsolid s\n"
+def stl(name, fs): open(name, "w").write(head + "".join(fs) + tail)
+stl("duplicated.stl", facets + [facets[10]])
+v = re.findall(r"vertex .*\n", facets[20])
+stl("reversed.stl", facets[:20] + [facets[20].replace(v[1], "TMP").replace(v[2], v[1]).replace("TMP", v[2])] + facets[21:])
+stl("nan.stl", facets[:5] + [re.sub(r"vertex (\S+)", "vertex nan", facets[5], 1)] + facets[6:])
+far = "facet normal 0 0 1\n outer loop\n  vertex 220 50 1200\n  vertex 230 50 1200\n  vertex 220 60 1200\n endloop\nendfacet\n"
+stl("pieces.stl", facets + [far])
+# a spike: the top vertex of facet 300 (and every facet sharing it) moved 20 mm along y
+p = re.findall(r"vertex (\S+) (\S+) (\S+)", facets[300])[0]
+old = "vertex %s %s %s" % p
+new = "vertex %s %.9g %s" % (p[0], float(p[1]) + 20, p[2])
+stl("spike.stl", [f.replace(old, new) for f in facets])
+# a big hole: the facets within 20 mm of the most anterior vertex removed
+pts = [tuple(map(float, m)) for m in re.findall(r"vertex (\S+) (\S+) (\S+)", text)]
+top = max(pts, key=lambda q: q[1])
+def near(f):
+    return any(sum((a - b) ** 2 for a, b in zip(tuple(map(float, m)), top)) < 400 for m in re.findall(r"vertex (\S+) (\S+) (\S+)", f))
+stl("hole.stl", [f for f in facets if not near(f)])
+stl("few.stl", facets[:30])
+open("empty.obj", "w").write("# nothing\n")
+open("cloud.obj", "w").write("".join("v %g %g %g\n" % q for q in sorted(set(pts))))
+b = open("patient/scan.stl").read()
+open("scan.xyz", "w").write(b)
+# a truncated binary STL
+data = bytearray(80) + struct.pack("<I", 1000) + bytearray(50 * 10)
+open("truncated.stl", "wb").write(bytes(data))
+PY
+
+refuse() { # NAME MESSAGE ARGS...: exit 2, the message, no output folder
+  local name="$1" msg="$2"; shift 2
+  set +e; "$BIN" -q scan-model "$@" --out "bad_$name" >"$name.log" 2>&1; code=$?; set -e
+  [ "$code" = 2 ] || { echo "FAIL: $name: exit $code, not 2"; cat "$name.log"; exit 1; }
+  grep -q -- "$msg" "$name.log" || { echo "FAIL: $name: no '$msg' in:"; cat "$name.log"; exit 1; }
+  [ ! -e "bad_$name" ] || { echo "FAIL: $name left output"; exit 1; }
+  ls -d bad_"$name".partial-* >/dev/null 2>&1 && { echo "FAIL: $name left a staging folder"; exit 1; }
+  return 0
+}
+refuse missing "no such file" none.stl --units mm
+refuse format "unknown scan format '.xyz'" scan.xyz --units mm
+refuse truncated "truncated binary STL" truncated.stl --units mm
+refuse empty "empty" empty.obj --units mm
+refuse nan "non-finite x coordinate" nan.stl --units mm
+refuse few "too few points" few.stl --units mm
+refuse units "wrong units?" patient/scan.stl --units m
+refuse duplicated "duplicated triangle" duplicated.stl --units mm
+refuse reversed "inconsistent orientation" reversed.stl --units mm
+refuse pieces "disconnected pieces" pieces.stl --units mm
+refuse spike "spike: vertex" spike.stl --units mm
+refuse hole "hole:" hole.stl --units mm
+refuse cloud "a point cloud has no open boundary" cloud.obj --units mm
+refuse unit_option "the unit of the scan's coordinates must be stated" patient/scan.stl --units cm
+refuse nipple "from the nearest point of the scan" patient/scan.stl --units mm --nipple 0,0,0
+refuse up "nearly along the chest normal" patient/scan.stl --units mm --up 0,1,0
+refuse size "--mesh-size = 0.5 is out of range" patient/scan.stl --units mm --mesh-size 0.5
+
+# Round trips: the synthetic patient, then a cap's scan (R = 70 mm, H = 60 mm).
+trip() { # NAME SCAN TRUTH
+  "$BIN" -q scan-model "$2" --units mm --posture standing --mesh-size 0.01 --out "$1_model" >"$1_model.log"
+  "$BIN" -q neutral-state "$1_model/case.toml" --posture standing --out "$1_neutral" >"$1_neutral.log"
+  "$BIN" -q simulate "$1_neutral/case.reference.toml" --set postures.names=standing --set output.xdmf=false \
+    --out "$1_forward" >"$1_forward.log"
+  $PY "$SRC/bench/scan_compare.py" "$3" "$1_model" "$1_neutral" "$1_forward" | tee "$1.json"
+}
+trip patient patient/scan.stl patient
+$PY - "$SRC" <<'PY'
+import math, struct, sys
+R, H = 70.0, 60.0
+Rs = (R * R + H * H) / (2 * H); yc = H - Rs; nr, nt = 24, 72
+pts = [(0.0, H, 0.0)]
+for i in range(1, nr + 1):
+    for j in range(nt):
+        x, z = R * i / nr * math.cos(2 * math.pi * j / nt), R * i / nr * math.sin(2 * math.pi * j / nt)
+        pts.append((x, max(0.0, yc + math.sqrt(Rs * Rs - x * x - z * z)), z))
+idx = lambda i, j: 0 if i == 0 else 1 + (i - 1) * nt + j % nt
+tris = [(0, idx(1, j + 1), idx(1, j)) for j in range(nt)]
+for i in range(1, nr):
+    for j in range(nt):
+        tris += [(idx(i, j), idx(i, j + 1), idx(i + 1, j + 1)), (idx(i, j), idx(i + 1, j + 1), idx(i + 1, j))]
+with open("cap.stl", "wb") as f:
+    f.write(bytes(80) + struct.pack("<I", len(tris)))
+    for t in tris:
+        f.write(struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *pts[k]) for k in t) + b"\0\0")
+PY
+trip cap cap.stl -
+$PY - <<'PY'
+import json, sys
+p, c = json.load(open("patient.json")), json.load(open("cap.json"))
+bad = []
+if p["loaded_rms_mm"] > 0.1 or c["loaded_rms_mm"] > 0.1:
+    bad.append("the loaded skin is not reproduced within 0.1 mm RMS")
+if p["reference_rms_mm"] > 1.0:
+    bad.append("the reference is not within 1 mm RMS of the truth")
+if bad:
+    sys.exit("FAIL: " + "; ".join(bad))
+PY
+echo "scan_model: ok"
