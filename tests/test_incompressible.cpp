@@ -11,6 +11,7 @@
 // The mixed u orders lie above theory (3, 2) on these nested meshes at high
 // lambda / mu; at lambda = mu the same code gives 3.03 / 1.99 (level 0 -> 1).
 #include "config.hpp"
+#include "fixtures.hpp"
 #include "errors.hpp"
 #include "mms_mixed.hpp"
 #include "sphere_bench.hpp"
@@ -139,4 +140,72 @@ TEST(SphereIncompressible, MixedRefusesP1AndZeroLambda)
   EXPECT_THROW(solve_sphere_bench(s, 1, 0.008, MPI_COMM_WORLD, 4, true), InputError);
   s.lambda = 0;
   EXPECT_THROW(solve_sphere_bench(s, 2, 0.008, MPI_COMM_WORLD, 4, true), InputError);
+}
+
+// The mixed model's Jacobian is the derivative of its residual (UFL
+// derivative() of every term on the mixed space, composed): at a state w
+// with u and p non-zero and a direction v (all entries, u and p),
+//   |r(w + t v) - r(w) - t J(w) v| = O(t^2).
+TEST(MixedModel, JacobianTaylorRemainder)
+{
+  auto c = fixtures::coarse_case(2, 0.02);
+  c.set("tissue.lambda", 4e5);
+  c.set("tissue.formulation", std::string("mixed"));
+  c.set("skin.tension_only", 0.0); // the plain membrane: the relaxed one is only C1
+  Model m(build_neutral_mesh(c, MPI_COMM_WORLD), Constraints{true, false}, TissueFormulation::mixed);
+  apply_parameters(c, m);
+  m.set_parameter("g_vec", {0.0, -4.0, -9.0});
+  fixtures::perturb(m, 2e-3, 1);
+  m.energy(); // w's u part = u
+  PetscVec w0(m.create_vector()), v(m.create_vector()), w(m.create_vector()), r0(m.create_vector()),
+      r1(m.create_vector()), Jv(m.create_vector());
+  PetscMat J(m.create_matrix());
+  {
+    PetscVec state(dolfinx::la::petsc::create_vector_wrap(*m.state()->x()));
+    VecCopy(state.get(), w0.get());
+  }
+  PetscInt n, lo;
+  VecGetLocalSize(w0.get(), &n);
+  VecGetOwnershipRange(w0.get(), &lo, nullptr);
+  PetscScalar *a, *b;
+  VecGetArray(w0.get(), &a);
+  VecGetArray(v.get(), &b);
+  for (PetscInt i = 0; i < n; ++i)
+  {
+    a[i] += 1e-4 * std::sin(0.37 * double(lo + i)); // p ~ 1e-4 Pa .. u noise 0.1 mm
+    b[i] = 2e-4 * std::cos(0.11 * double(lo + i));
+  }
+  VecRestoreArray(w0.get(), &a);
+  VecRestoreArray(v.get(), &b);
+  // Constrained entries: 0 in w0 and in v (their rows are u - g, their
+  // columns are not in J).
+  m.set_displacement(w0.get());
+  m.constrain_displacement();
+  m.energy(); // w's u part = the constrained u
+  {
+    PetscVec state(dolfinx::la::petsc::create_vector_wrap(*m.state()->x()));
+    VecCopy(state.get(), w0.get());
+  }
+  m.constrain_increment(v.get());
+  ASSERT_GT(m.min_detF(), 0.0);
+  m.assemble_residual(r0.get());
+  m.assemble_jacobian(J.get());
+  MatMult(J.get(), v.get(), Jv.get());
+  std::vector<double> e;
+  for (double t : {1.0, 0.5, 0.25, 0.125})
+  {
+    VecWAXPY(w.get(), t, v.get(), w0.get());
+    m.set_displacement(w.get());
+    m.assemble_residual(r1.get());
+    VecAXPY(r1.get(), -1.0, r0.get());
+    VecAXPY(r1.get(), -t, Jv.get());
+    PetscReal norm;
+    VecNorm(r1.get(), NORM_2, &norm);
+    e.push_back(norm);
+  }
+  for (std::size_t k = 1; k < e.size(); ++k)
+  {
+    std::printf("t = %g: remainder %.3e, rate %.3f\n", std::pow(0.5, double(k)), e[k], std::log2(e[k - 1] / e[k]));
+    EXPECT_NEAR(std::log2(e[k - 1] / e[k]), 2.0, 0.2);
+  }
 }
