@@ -8,6 +8,7 @@
 #include "surface_export.hpp"
 #include "timer.hpp"
 #include "viewer.hpp"
+#include <cmath>
 #include <fmt/format.h>
 
 namespace breastsim
@@ -84,6 +85,8 @@ nlohmann::json to_json(const PostureResult& r)
   j["linear_iterations"] = r.path.linear_iterations;
   j["wall_time_s"] = r.seconds;
   j["min_det_F"] = r.min_det_F;
+  if (std::isfinite(r.mean_pressure))
+    j["mean_pressure_Pa"] = r.mean_pressure; // mixed formulation: int p dV / V
   j["coarse_start"] = r.coarse.used;
   j["coarse_newton_iterations"] = r.coarse.newton_iterations;
   j["coarse_level_newton_iterations"] = r.coarse.level_newton_iterations;

@@ -28,6 +28,8 @@ PostureResult solve_from(Model& model, NewtonSolver& newton, const ObservablePro
   r.converged_from_guess = start.converged;
   r.observables = probe.measure(model);
   r.min_det_F = model.min_detF(); // > 0: no element of the deformed state is inverted
+  if (model.mixed())
+    r.mean_pressure = model.mean_pressure();
   r.seconds = clock.seconds();
   return r;
 }

@@ -4,6 +4,7 @@
 // src/solver/coarse_start.hpp, or any other), falling back to the ramp
 // (src/solver/warm_start.hpp).
 #include "coarse_start.hpp"
+#include <limits>
 #include "config.hpp"
 #include "load_stepping.hpp"
 #include "observables.hpp"
@@ -22,6 +23,8 @@ struct PostureResult
   CoarseGuessReport coarse; ///< grid sequencing (src/solver/coarse_start.hpp), if used
   bool converged_from_guess = false; ///< Newton converged from the guess (no ramp)
   double min_det_F = 0;     ///< smallest det F of the deformed state (element nodes)
+  /// Mixed formulation: int p dV / V [Pa]; NaN for the displacement formulation.
+  double mean_pressure = std::numeric_limits<double>::quiet_NaN();
   double seconds = 0;
 };
 

@@ -20,7 +20,9 @@ m, p1 = (json.load(open(f)) for f in sys.argv[1:3])
 pm, pp = m["postures"][0], p1["postures"][0]
 zm, zp = pm["nipple_m"][2], pp["nipple_m"][2]
 print("mixed nipple_z", zm, "P1 nipple_z", zp, "min det F", pm["min_det_F"])
-checks = [m["tissue_formulation"] == "mixed", pm["min_det_F"] > 0, zm < zp - 1e-3]
+print("mixed mean pressure [Pa]", pm["mean_pressure_Pa"])
+checks = [m["tissue_formulation"] == "mixed", pm["min_det_F"] > 0, zm < zp - 1e-3,
+          abs(pm["mean_pressure_Pa"]) < 1e4, "mean_pressure_Pa" not in pp]
 print("checks:", checks)
 sys.exit(0 if all(checks) else 1)
 PY
