@@ -157,7 +157,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   Model model(mesh, Constraints{true, case_options.fixed_base}, case_options.formulation);
   apply_parameters(c, model);
   res.dofs = model.num_dofs();
-  res.linear_solver = resolved_linear_solver(NewtonOptions::from(c), res.dofs);
+  res.linear_solver = model.mixed() ? "direct" : resolved_linear_solver(NewtonOptions::from(c), res.dofs);
   ObservableProbe probe(model, case_options.geometry.nipple());
   log::info("model: {} unknowns, linear solver {}, terms on: {}", res.dofs, res.linear_solver,
             [&] {
