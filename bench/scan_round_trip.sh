@@ -3,16 +3,20 @@
 # (200 to 1500 cm^3, ptosis, lateral turn, asymmetry; holes, 0.5 mm noise)
 # and a spherical cap's scan go scan -> scan-model -> neutral-state ->
 # simulate; prints per breast the times and bench/scan_compare.py's RMS numbers.
-# Usage: bash bench/scan_round_trip.sh BUILD_DIR [MESH_SIZE_M]
+# With CHEST = chest, the patients' true chest wall (chest.stl) is given
+# (--chest) instead of the plane fitted through the footprint.
+# Usage: bash bench/scan_round_trip.sh BUILD_DIR [MESH_SIZE_M] [chest]
 set -eu -o pipefail
-BIN="$(cd "$1" && pwd)/breastsim"; H="${2:-0.006}"
+BIN="$(cd "$1" && pwd)/breastsim"; H="${2:-0.006}"; CHEST="${3:-}"
 SRC="$(cd "$(dirname "$0")/.." && pwd)"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 run() { # NAME SCAN TRUTH
   local t0 t1 t2
   t0=$(date +%s.%N)
-  "$BIN" -q scan-model "$2" --units mm --posture standing --mesh-size "$H" --out "$1_m" >/dev/null
+  local chest=()
+  [ "$CHEST" = chest ] && [ "$3" != - ] && chest=(--chest "$3/chest.stl")
+  "$BIN" -q scan-model "$2" --units mm --posture standing --mesh-size "$H" "${chest[@]}" --out "$1_m" >/dev/null
   "$BIN" -q neutral-state "$1_m/case.toml" --posture standing --out "$1_n" >/dev/null \
     || { echo "$1: neutral-state refused (exit $?)"; return 0; }
   t1=$(date +%s.%N)

@@ -133,6 +133,25 @@ void add_normal_noise(scan::ScanSurface& s, double sigma, std::mt19937& rng)
       s.points[i] = s.points[i] + (noise(rng) / len) * normal[i];
 }
 
+/// The true chest wall: the square |x|, |z| <= half of the plane y = 0,
+/// triangles facing the breast (+y), as a second surface for --chest.
+scan::ScanSurface chest_patch(double half)
+{
+  scan::ScanSurface c;
+  const int n = 10;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      c.points.push_back({-half + 2 * half * i / n, 0.0, -half + 2 * half * j / n});
+  auto id = [&](int i, int j) { return static_cast<std::int64_t>(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) // (a, c, b): (c - a) x (b - a) along +y for a = (i, j), b = (i + 1, j)
+    {
+      c.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i + 1, j)});
+      c.triangles.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1)});
+    }
+  return c;
+}
+
 std::string extension(scan::ScanFormat f)
 {
   return f == scan::ScanFormat::obj ? "obj" : (f == scan::ScanFormat::ply_ascii || f == scan::ScanFormat::ply_binary) ? "ply" : "stl";
@@ -176,6 +195,13 @@ SyntheticPatientResult synthetic_patient(const Config& material, const Synthetic
   SyntheticPatientResult res{mesh.volume, mesh.nipple, loaded.observables.nipple, s.points.size(),
                              r.points_only ? 0 : s.triangles.size(), "scan." + extension(r.format)};
   scan::write_scan(s, dir.path() / res.scan_file, r.format, scan::Units::mm, r.points_only);
+  double extent = 0;
+  for (std::size_t n = 0; n < mesh.mesh.num_nodes(); ++n)
+    extent = std::max({extent, std::abs(mesh.mesh.x[3 * n]), std::abs(mesh.mesh.x[3 * n + 2])});
+  scan::ScanSurface chest = chest_patch(1.3 * extent);
+  for (Vec3& p : chest.points)
+    p = p + r.offset;
+  scan::write_scan(chest, dir.path() / "chest.stl", scan::ScanFormat::stl_binary, scan::Units::mm);
   c.set("geometry.mesh_file", std::string("reference.msh"));
   write_text(dir.path() / "case.reference.toml", c.to_toml(), comm);
   const auto& sh = r.shape;

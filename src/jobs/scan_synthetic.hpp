@@ -8,6 +8,7 @@
 // standard deviation `noise` along each point's normal, the whole moved by
 // `offset` into a "scanner" frame (axes unchanged). Written:
 //   scan.<stl|ply|obj>   the scan, in millimetres
+//   chest.stl            the true chest wall (a square of the plane y = 0), for --chest
 //   reference.msh, case.reference.toml   the true stress-free breast (breast frame)
 //   truth.json           the shape, posture, noise, offset and the loaded observables
 // Serial (one MPI rank).
