@@ -5,6 +5,7 @@
 # simulate; prints per breast the times and bench/scan_compare.py's RMS numbers.
 # With CHEST = chest, the patients' true chest wall (chest.stl) is given
 # (--chest) instead of the plane fitted through the footprint.
+# MESH_SIZE_M: scan-model's --mesh-size (0: by the volume); the truth is meshed at 6 mm.
 # Usage: bash bench/scan_round_trip.sh BUILD_DIR [MESH_SIZE_M] [chest]
 set -eu -o pipefail
 BIN="$(cd "$1" && pwd)/breastsim"; H="${2:-0.006}"; CHEST="${3:-}"
@@ -31,7 +32,7 @@ run() { # NAME SCAN TRUTH
 i=0
 for shape in "200 0.1 0.0 0.0" "400 0.3 0.1 0.15" "700 0.5 0.2 0.1" "1000 0.4 -0.1 0.3" "1500 0.6 0.15 0.2"; do
   set -- $shape; i=$((i + 1))
-  "$BIN" -q synthetic-patient --volume "$1" --ptosis "$2" --lateral "$3" --asymmetry "$4" --mesh-size "$H" \
+  "$BIN" -q synthetic-patient --volume "$1" --ptosis "$2" --lateral "$3" --asymmetry "$4" --mesh-size 0.006 \
     --seed "$i" --out "p$i" >/dev/null
   echo "patient $i: volume $1 cm3, ptosis $2, lateral $3, asymmetry $4"
   run "p$i" "p$i/scan.stl" "p$i"

@@ -19,6 +19,7 @@ namespace
 {
 struct ScanOptions
 {
+  ScanOptions() { model.mesh.mesh_size = 0; } // by the breast's volume
   std::string skin, chest, units, posture = "standing", nipple, up = "0,0,1", lateral = "1,0,0", name = "scan";
   double theta = std::numeric_limits<double>::quiet_NaN();
   scan::ScanModelOptions model;
@@ -57,7 +58,8 @@ ScanModelRequest request(const ScanOptions& o)
     r.options.frame.nipple = scan::operator*(k, parse_vector(o.nipple, "--nipple"));
   r.options.frame.up = parse_vector(o.up, "--up");
   r.options.frame.lateral = parse_vector(o.lateral, "--lateral");
-  check_range(r.options.mesh.mesh_size, 0.001, 0.02, "--mesh-size", "m");
+  if (r.options.mesh.mesh_size != 0)
+    check_range(r.options.mesh.mesh_size, 0.001, 0.02, "--mesh-size", "m");
   check_range(r.options.limits.max_hole, 0.001, 0.1, "--max-hole", "m");
   check_range(r.options.limits.max_noise, 1e-5, 0.01, "--max-noise", "m");
   check_range(r.options.limits.max_spike, 1e-4, 0.05, "--max-spike", "m");
@@ -89,7 +91,8 @@ Command add_scan_model_command(CLI::App& root)
   app->add_option("--up", o->up, "cranial direction in the scan's frame")->capture_default_str();
   app->add_option("--lateral", o->lateral, "direction toward the axilla of this breast in the scan's frame")
       ->capture_default_str();
-  app->add_option("--mesh-size", o->model.mesh.mesh_size, "element size [m], in [0.001, 0.02]")->capture_default_str();
+  app->add_option("--mesh-size", o->model.mesh.mesh_size, "element size [m], in [0.001, 0.02]; 0: 6 mm (V / 500 "
+                                                          "cm^3)^(1/3) within [4, 12] mm")->capture_default_str();
   app->add_option("--order", o->model.mesh.order, "element order 1 or 2")->capture_default_str();
   app->add_flag("--half", o->model.mesh.half, "mesh the half x >= 0 with a symmetry face (a symmetric breast)");
   app->add_option("--degree", o->model.degree, "degree of the smooth skin fit, in [2, 20]")->capture_default_str();

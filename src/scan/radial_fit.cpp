@@ -90,6 +90,21 @@ RadialSurface fit_radial(const std::vector<Vec3>& points, int degree, double smo
   return {degree, cholesky_solve(A, rhs)};
 }
 
+double radial_volume(const RadialSurface& f)
+{
+  // V = int_0^{pi/2} int_0^{2 pi} r^3 / 3 sin(alpha) dbeta dalpha (midpoint rule)
+  const int na = 90, nb = 180;
+  double v = 0;
+  for (int i = 0; i < na; ++i)
+    for (int j = 0; j < nb; ++j)
+    {
+      const double alpha = (i + 0.5) * 0.5 * M_PI / na, beta = (j + 0.5) * 2 * M_PI / nb;
+      const double rho = 2 * alpha / M_PI, r = f.radius(rho * std::cos(beta), rho * std::sin(beta));
+      v += r * r * r / 3 * std::sin(alpha) * (0.5 * M_PI / na) * (2 * M_PI / nb);
+    }
+  return v;
+}
+
 std::vector<double> radial_residuals(const RadialSurface& f, const std::vector<Vec3>& points)
 {
   std::vector<double> r(points.size());

@@ -32,6 +32,9 @@ struct RadialSurface
 /// lambda relative to the mean diagonal of the normal equations.
 RadialSurface fit_radial(const std::vector<Vec3>& points, int degree, double smoothing);
 
+/// Volume under the surface: V = int r^3 / 3 dOmega over the half sphere.
+double radial_volume(const RadialSurface& f);
+
 /// |x| - r(x / |x|) of each point: the radial distance to the surface.
 std::vector<double> radial_residuals(const RadialSurface& f, const std::vector<Vec3>& points);
 } // namespace breastsim::scan

@@ -13,7 +13,7 @@ namespace breastsim::scan
 {
 struct ScanMeshOptions
 {
-  double mesh_size = 0.006; ///< target element size [m]
+  double mesh_size = 0.006; ///< target element size [m] (build_scan_model: 0 = by the volume)
   int order = 1;            ///< 1: 4-node, 2: 10-node tetrahedra
   bool half = false;        ///< the half x >= 0 with a symmetry face
 };

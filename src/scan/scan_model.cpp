@@ -1,5 +1,6 @@
 #include "scan_model.hpp"
 #include "scan_readers.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace breastsim::scan
@@ -42,9 +43,12 @@ ScanModel build_scan_model(const std::filesystem::path& skin, const std::optiona
   const Vec3 n = m.frame.to_breast(m.frame.nipple);
   Vec3 d{0, n[1], n[2]};
   d = (1 / norm(d)) * d;
-  m.mesh_size = o.mesh.mesh_size;
-  m.half = o.mesh.half;
-  m.mesh = mesh_scan(m.fit, m.fit.radius(d) * d, o.mesh, tag_base, tag_skin, tag_symmetry);
+  ScanMeshOptions mo = o.mesh;
+  if (mo.mesh_size == 0) // automatic: h = 6 mm (V / 500 cm^3)^(1/3) in [4, 12] mm, about 10^4 tetrahedra
+    mo.mesh_size = std::clamp(0.006 * std::cbrt(radial_volume(m.fit) / 500e-6), 0.004, 0.012);
+  m.mesh_size = mo.mesh_size;
+  m.half = mo.half;
+  m.mesh = mesh_scan(m.fit, m.fit.radius(d) * d, mo, tag_base, tag_skin, tag_symmetry);
   return m;
 }
 } // namespace breastsim::scan

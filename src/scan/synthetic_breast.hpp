@@ -24,7 +24,4 @@ struct SyntheticShape
 
 /// The reference skin of `s` (InputError naming a parameter out of range).
 RadialSurface synthetic_reference(const SyntheticShape& s);
-
-/// Volume under a radial surface: V = int r^3 / 3 dOmega over the half sphere.
-double radial_volume(const RadialSurface& f);
 } // namespace breastsim::scan
