@@ -149,6 +149,8 @@ std::string base64_decode(const std::string& text)
     n.pop_back();
   if (n.size() % 4 == 1)
     throw InputError("not base64: its length is impossible");
+  if (n.size() != text.size() && text.size() % 4 != 0) // padding completes the last group of 4
+    throw InputError("not base64: '=' padding that does not complete a group of 4 characters");
   std::string out;
   unsigned bits = 0;
   int count = 0;

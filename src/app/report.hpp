@@ -31,7 +31,8 @@ std::string report_html(const JobRecord& surgery, const JobRecord* calibration,
                         const std::vector<ReportPicture>& pictures);
 /// `text` with &, <, >, " and ' escaped for HTML.
 std::string html_escape(const std::string& text);
-/// The bytes of base64 `text` (RFC 4648 alphabet, padding optional);
-/// InputError if it is not base64.
+/// The bytes of base64 `text` (RFC 4648 alphabet, padding optional but,
+/// when present, completing the last group of 4); InputError if it is not
+/// base64.
 std::string base64_decode(const std::string& text);
 } // namespace breastsim::app
