@@ -3,8 +3,10 @@
 // measurements (a value out of range is flagged as typed, the example file
 // accepted) -> calibrate (the API's fit shown and used in the model) -> move
 // a slider (the plan redraws; an impossible h is shown with its reason) ->
-// run a surgery, reload while it runs (the page reattaches) -> the numbers
-// on the page equal the API's -> export the case TOML. No console errors.
+// run a surgery standing and supine, reload while it runs (the page
+// reattaches) -> the numbers on the page equal the API's and the CLI's ->
+// the report (every posture's row and before | after picture) and its PDF
+// -> a 3 x 3 sweep -> export the case TOML. No console errors.
 // Screenshots of each step into SHOT_DIR; the first view (< 1 s, median of 5
 // loads) and the slider redraw (< 100 ms, median of 9 moves) from the page's
 // performance entries, into SHOT_DIR/timings.json.
@@ -81,11 +83,17 @@ async function report(page, job, mu) {
   const href = await page.getAttribute("#report-open", "href");
   const html = await page.evaluate(async (u) => (await fetch(u)).text(), href);
   const s = job.summary;
+  const postures = s.postures.map((p) => p.posture), pictures = (html.match(/<img /g) || []).length;
   check(html.includes(`>${s.resected_volume_cm3.toFixed(1)}</b> cm³`) && html.includes(`>${s.resected_weight_g.toFixed(1)}</b> g`) &&
         html.includes(`data-key="post_nipple_to_base_mm">${s.postures[0].post.nipple_to_base_mm.toFixed(1)}<`) &&
         html.includes(`data-key="fitted-mu">${+mu.fitted.toPrecision(4)}<`) && /95 % interval/.test(html) &&
-        (html.match(/<img /g) || []).length === 4 && html.includes(`${(30).toFixed(1)} deg`),
-        "the report holds the API's volume, weight, nipple to base, the plan, the fit with intervals and 4 pictures");
+        html.includes(`${(30).toFixed(1)} deg`),
+        "the report holds the API's volume, weight, nipple to base, the plan, the fit with intervals");
+  // The plan, every posture before | after, the first posture overlaid twice.
+  const pictured = postures.filter((p) => html.includes(`<figcaption>${p}: before (left) | after (right), in profile</figcaption>`) &&
+    html.includes(`<tr data-posture="${p}">`));
+  check(postures.length >= 2 && pictured.length === postures.length && pictures === postures.length + 3,
+        `the report pictures and tabulates every posture (${pictured.join(", ")}: ${pictures} pictures)`);
   const tab = await page.context().newPage();
   try {
     await tab.goto(new URL(href, url).href);
@@ -178,7 +186,8 @@ async function walk(page, errors) {
   await redrawAfter(page, m);
   await page.screenshot({ path: path.join(shots, "3-plan-slider.png") });
 
-  // Simulate: the page's numbers are the API's.
+  // Simulate, standing and supine (the report pictures every posture): the page's numbers are the API's.
+  await page.check(".posture[value=supine]");
   await page.click("#run");
   await page.waitForFunction(() => /running/.test(document.querySelector("#stage").textContent), null,
                              { timeout: 60000 });
@@ -210,6 +219,7 @@ async function walk(page, errors) {
 
   await cliAgrees(page, job, shown);
   await report(page, job, mu);
+  await page.uncheck(".posture[value=supine]"); // the sweep reports the standing breast only
   await smallSweep(page, job);
 
   // Reload after the end: the page shows the job's result and its case again.
@@ -223,7 +233,7 @@ async function walk(page, errors) {
   if (process.env.BREASTSIM_DEBUG) console.log(toml);
   const [tar] = await Promise.all([page.waitForEvent("download"), page.click("#export-folder")]);
   check(fs.statSync(await tar.path()).size > 10240, "the result folder downloads as one archive");
-  check(/a_deg = 30(\.0)?\s/.test(toml) && new RegExp(`mu = ${mu.fitted.toPrecision(6).slice(0, 5)}`).test(toml) && /mesh_size = 0.012\s/.test(toml) && /names = \[ 'standing' \]/.test(toml), "the exported case file holds the plan");
+  check(/a_deg = 30(\.0)?\s/.test(toml) && new RegExp(`mu = ${mu.fitted.toPrecision(6).slice(0, 5)}`).test(toml) && /mesh_size = 0.012\s/.test(toml) && /names = \[ 'standing'(, 'supine')? \]/.test(toml), "the exported case file holds the plan");
   check(errors.length === 0, "no console errors after the walk" + (errors.length ? ": " + errors : ""));
   fs.writeFileSync(path.join(shots, "timings.json"), JSON.stringify({ first_view_ms: firstView, slider_redraw_ms: times,
     first_view_median_ms: median(firstView), slider_redraw_median_ms: median(times) }));
