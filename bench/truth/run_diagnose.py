@@ -3,6 +3,7 @@
 
     python3 bench/truth/run_diagnose.py BUILD_DIR [--only NAME,...] [--classes control,weak,...]
                                         [--limit N] [--out DIR] [--rerun] [--summarize-only]
+                                        [--jobs N] [--mpi N [--ranks-per-case K]]
     python3 bench/truth/run_diagnose.py --selftest
 
 Every recording of bench/truth/manifest.json (or the selected subset) is
@@ -21,7 +22,9 @@ coverage of the hidden value q by the reported 95 % interval, time per
 diagnosis. Only the standard library is needed.
 """
 import argparse
+import concurrent.futures
 import json
+import os
 import shlex
 import statistics
 import subprocess
@@ -40,27 +43,37 @@ TARGET_EXACT, TARGET_COVERAGE, TARGET_MEDIAN_S, MIN_CONTROLS = 0.95, 0.90, 120.0
 
 
 # -- running ---------------------------------------------------------------------
-def diagnose_command(binary, recording, out_dir, case, extra, nice):
+def diagnose_command(binary, recording, out_dir, case, extra, nice, mpi=None):
+    """mpi = (ranks, ranks per case): mpirun -n ranks ... --ranks-per-case K."""
     cmd = ["nice", "-n", str(nice)] if nice is not None else []
+    if mpi:
+        cmd += ["mpirun", "-n", str(mpi[0])]
     cmd += [str(binary), "-q", "diagnose", str(recording), "--case", str(case)]
     for s in BASELINE_SETS:
         cmd += ["--set", s]
     cmd += ["--fit", FIT, "--out", str(out_dir)] + list(extra)
+    if mpi:
+        cmd += ["--ranks-per-case", str(mpi[1])]
     return cmd
 
 
-def run_one(binary, manifest_dir, entry, out, case, extra, nice, rerun):
+MPI_ROOT_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+                "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+
+
+def run_one(binary, manifest_dir, entry, out, case, extra, nice, rerun, mpi=None):
     """Diagnose one recording into OUT/NAME/; returns 'ran', 'skipped' or 'failed'."""
     d = out / entry["name"]
     if (d / "diagnosis" / "diagnosis.json").exists() and not rerun:
         return "skipped"
     d.mkdir(parents=True, exist_ok=True)
     rec = manifest_dir / entry["file"]
-    cmd = diagnose_command(binary, rec, d / "diagnosis", case, extra, nice)
+    cmd = diagnose_command(binary, rec, d / "diagnosis", case, extra, nice, mpi)
     (d / "command.txt").write_text(shlex.join(cmd) + "\n")
     t0 = time.monotonic()
     with open(d / "diagnose.log", "w") as log:
-        rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT)
+        env = dict(os.environ, **MPI_ROOT_ENV) if mpi else None
+        rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
     seconds = time.monotonic() - t0
     (d / "run.json").write_text(json.dumps({"exit_code": rc, "seconds": seconds,
                                             "command": cmd}, indent=1) + "\n")
@@ -226,6 +239,13 @@ def parse_args(argv):
     ap.add_argument("--extra", default="", help="further diagnose arguments (quoted)")
     ap.add_argument("--nice", type=int, default=19, help="niceness of the diagnoses (-1: none)")
     ap.add_argument("--rerun", action="store_true", help="diagnose again where a result exists")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="diagnoses run at once (each its own process; time per diagnosis then "
+                         "includes the sharing of the cores)")
+    ap.add_argument("--mpi", type=int, default=0,
+                    help="run each diagnosis as mpirun -n MPI (0: one process)")
+    ap.add_argument("--ranks-per-case", type=int, default=1,
+                    help="with --mpi: MPI ranks per forward solve (diagnose --ranks-per-case)")
     ap.add_argument("--summarize-only", action="store_true", help="only score existing results")
     ap.add_argument("--selftest", action="store_true", help="check runner and scoring with a fake binary")
     ap.add_argument("--expect-exact", action="store_true",
@@ -236,6 +256,11 @@ def parse_args(argv):
     a.classes = [c for c in a.classes.split(",") if c]
     if a.limit < 0:
         ap.error("--limit must be >= 0")
+    if a.jobs < 1:
+        ap.error("--jobs must be >= 1")
+    if a.mpi < 0 or (a.mpi and (a.ranks_per_case < 1 or a.mpi % a.ranks_per_case)):
+        ap.error(f"--mpi {a.mpi} --ranks-per-case {a.ranks_per_case}: need --mpi >= 0 and a "
+                 "--ranks-per-case >= 1 that divides it")
     if not a.selftest and not a.summarize_only and not a.build:
         ap.error("BUILD_DIR is required (or --summarize-only / --selftest)")
     return a
@@ -257,12 +282,19 @@ def main(argv=None):
         if not binary.exists():
             sys.exit(f"run_diagnose.py: {binary} does not exist (build breastsim first)")
         nice = None if a.nice < 0 else a.nice
-        for e in entries:
-            state = run_one(binary, manifest_path.parent, e, out, a.case, shlex.split(a.extra), nice, a.rerun)
+        mpi = (a.mpi, a.ranks_per_case) if a.mpi else None
+
+        def run_and_print(e):
+            state = run_one(binary, manifest_path.parent, e, out, a.case, shlex.split(a.extra), nice,
+                            a.rerun, mpi)
             row = read_result(out, e)
             named = "-" if row is None or row["named"] is None else ("+".join(row["named"]) or "none")
             print(f"{e['name']:<40} {state:<8} hidden {e['hidden_label']:<35} named {named:<30} "
                   f"{'' if row is None else format(row['seconds'], '.1f') + ' s'}", flush=True)
+
+        # --jobs N: N diagnoses at once (independent processes), in manifest order.
+        with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
+            list(pool.map(run_and_print, entries))
     rows = [read_result(out, e) for e in entries]
     scored = [r for r in rows if r is not None]
     summary = summarize(scored)

@@ -42,18 +42,36 @@ std::vector<double> project_out(const Matrix& J, const std::vector<double>& j)
   return out;
 }
 
-CandidateScore score(PointEvaluator& ev, const Candidate& c, const FitState& state,
-                     const std::vector<double>& mesh_e, double kappa)
+namespace
+{
+double probe_value(const Candidate& c) { return 0.05 * c.typical; }
+} // namespace
+
+std::vector<double> probe_residuals(PointEvaluator& ev, const Candidate& c, const FitState& state)
+{
+  try
+  {
+    return ev(c.with(state.config, probe_value(c))).r;
+  }
+  catch (const SolveError& err)
+  {
+    log::warn("candidate '{}': the probe solve failed ({}); not scored", c.name, err.what());
+    return {};
+  }
+}
+
+CandidateScore score_from_probe(const Candidate& c, const FitState& state,
+                                const std::vector<double>& probe_r,
+                                const std::vector<double>& mesh_e, double kappa)
 {
   CandidateScore s;
   s.name = c.name;
-  const double probe = 0.05 * c.typical;
-  try
+  if (!probe_r.empty())
   {
-    const PointEvaluation e = ev(c.with(state.config, probe));
+    const double probe = probe_value(c);
     std::vector<double> j(state.r.size());
     for (std::size_t i = 0; i < j.size(); ++i)
-      j[i] = (e.r[i] - state.r[i]) / probe;
+      j[i] = (probe_r[i] - state.r[i]) / probe;
     const auto Pj = project_out(state.J, j);
     double U = 0, I = 0, Ue = 0;
     for (std::size_t i = 0; i < j.size(); ++i)
@@ -69,10 +87,6 @@ CandidateScore score(PointEvaluator& ev, const Candidate& c, const FitState& sta
     // Extrapolated to the error against the exact solution (Richardson,
     // order 1: kappa = 1/(1 - 1/r)).
     s.mesh_allowance = (Ue > 0 && I > 0) ? kappa * kappa * Ue * Ue / I : 0.0;
-  }
-  catch (const SolveError& err)
-  {
-    log::warn("candidate '{}': the probe solve failed ({}); not scored", c.name, err.what());
   }
   log::info("candidate '{}': score {:.1f} (one-sided p = {:.2g}), linearised {} = {:.3g} {}, "
             "mesh-error allowance {:.1f}",

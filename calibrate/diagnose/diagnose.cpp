@@ -55,18 +55,23 @@ Config with_known(const Config& current, const Recording& rec)
 struct Search
 {
   Search(const Recording& r, const Config& c, const DiagnoseOptions& opt, MPI_Comm comm)
-      : rec(r), o(opt), ev(r, comm), current(with_known(c, r)), frees(frees_from_fit(o.fit, current))
+      : rec(r), o(opt), groups(comm, opt.ranks_per_case, "--ranks-per-case"), lsq(opt.lsq),
+        ev(r, groups.comm(), &groups), current(with_known(c, r)), frees(frees_from_fit(o.fit, current))
   {
+    if (groups.groups() > 1)
+      lsq.groups = &groups;
     if (o.mesh_ratio > 1)
     {
-      fine_ev = std::make_unique<PointEvaluator>(r, comm);
+      fine_ev = std::make_unique<PointEvaluator>(r, groups.comm(), &groups);
       kappa = 1.0 / (1.0 - 1.0 / o.mesh_ratio);
     }
   }
 
   const Recording& rec;
   const DiagnoseOptions& o;
-  PointEvaluator ev;
+  CaseGroups groups;   ///< independent solves over MPI sub-communicators (--ranks-per-case)
+  LsqOptions lsq;      ///< o.lsq, its Jacobian columns over `groups`
+  PointEvaluator ev;   ///< on this rank's group
   std::unique_ptr<PointEvaluator> fine_ev; ///< the finer mesh of the noise floor (mesh_ratio > 1)
   double kappa = 0;                        ///< Richardson factor 1/(1 - 1/r)
   Config current;                          ///< the model, with the terms found so far
@@ -79,13 +84,13 @@ struct Search
 /// the fit again with sigma_eff.
 void fit_current_model(Search& s, Diagnosis& d)
 {
-  s.state = fit(s.ev, s.current, s.frees, start_values(s.frees), s.o.lsq, "fit of the current model");
+  s.state = fit(s.ev, s.current, s.frees, start_values(s.frees), s.lsq, "fit of the current model");
   if (!s.fine_ev)
     return;
   const auto sigma = noise_floor(s.ev, *s.fine_ev, s.rec, s.state, s.o.mesh_ratio, d);
   s.ev.set_sigma(sigma);
   s.fine_ev->set_sigma(sigma);
-  s.state = fit(s.ev, s.current, s.frees, log_values(s.state), s.o.lsq, "fit of the current model");
+  s.state = fit(s.ev, s.current, s.frees, log_values(s.state), s.lsq, "fit of the current model");
 }
 
 /// Step 5: score every applicable candidate at its null value, with the share
@@ -101,17 +106,19 @@ std::size_t score_candidates(Search& s, Round& rd)
       mesh_e.push_back(s.state.r[i] - ef.r[i]);
   }
   const auto& wanted = s.o.candidates;
-  std::size_t tested = 0;
+  std::vector<const Candidate*> tested;
   for (const auto& c : candidate_library())
     if (c.applicable(s.state.config)
         && (wanted.empty() || std::find(wanted.begin(), wanted.end(), c.name) != wanted.end()))
-    {
-      rd.scores.push_back(score(s.ev, c, s.state, mesh_e, s.kappa));
-      ++tested;
-    }
+      tested.push_back(&c);
+  // The probe solves are independent: one per case of the groups.
+  const auto probes = s.groups.map(tested.size(), [&](std::size_t k)
+                                   { return probe_residuals(s.ev, *tested[k], s.state); });
+  for (std::size_t k = 0; k < tested.size(); ++k)
+    rd.scores.push_back(score_from_probe(*tested[k], s.state, probes[k], mesh_e, s.kappa));
   std::sort(rd.scores.begin(), rd.scores.end(),
             [](const auto& a, const auto& b) { return a.score > b.score; });
-  return tested;
+  return tested.size();
 }
 
 /// The evidence of a refit that needs no further solve: LR, effect in mm,
@@ -146,10 +153,10 @@ std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vect
 {
   Evidence& e = evidence_of(rd, rd.tested);
   const Config fine_base = finer(s.current, s.o.mesh_ratio);
-  const FitState without = fit(*s.fine_ev, fine_base, s.frees, log_values(s.state), s.o.lsq,
+  const FitState without = fit(*s.fine_ev, fine_base, s.frees, log_values(s.state), s.lsq,
                                "refinement check: current model on the finer mesh");
   auto with = std::make_unique<FitState>(fit(*s.fine_ev, fine_base, trial, log_values(rd.after),
-                                             s.o.lsq, "refinement check: with " + e.candidate));
+                                             s.lsq, "refinement check: with " + e.candidate));
   e.refinement_checked = true;
   e.lr_fine = without.chi2 - with->chi2;
   e.lr_continuum = continuum_lr(e.lr, e.lr_fine, s.o.mesh_ratio, s.o.refinement_order);
@@ -185,7 +192,7 @@ std::vector<Refit> refit_candidates(Search& s, Round& rd, double level)
     y.push_back(std::log(std::clamp(sc.estimate, cand.typical * 1e-3, cand.typical * 1e2)));
     try
     {
-      r.after = fit(s.ev, s.current, r.frees, y, s.o.lsq, "refit with " + cand.name);
+      r.after = fit(s.ev, s.current, r.frees, y, s.lsq, "refit with " + cand.name);
     }
     catch (const SolveError& err)
     {
@@ -290,7 +297,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   {
     const FitState f = s.fine_state ? *s.fine_state
                                     : fit(*s.fine_ev, finer(s.current, o.mesh_ratio), s.frees,
-                                          log_values(s.state), o.lsq, "refit on the finer mesh");
+                                          log_values(s.state), s.lsq, "refit on the finer mesh");
     d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.se_numerical);
   }
   if (!d.discovered.empty())

@@ -40,6 +40,9 @@ struct DiagnoseOptions
   /// Held-out postures: an accepted term must improve the linearised
   /// prediction of the postures it was not fitted on (sum of chi2 gains > 0).
   bool held_out_check = true;
+  /// MPI ranks per forward solve: the Jacobian columns and candidate probes
+  /// are solved by groups of this many ranks side by side (0: all ranks).
+  int ranks_per_case = 0;
   LsqOptions lsq;
 };
 

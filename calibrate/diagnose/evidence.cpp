@@ -146,8 +146,7 @@ void widen_by_model_form(FitState& s, const std::vector<double>& se_model_form)
   auto& u = s.uncertainty;
   for (std::size_t i = 0; i < s.values.size() && i < u.se_log.size() && i < se_model_form.size(); ++i)
   {
-    u.se_log[i] = std::hypot(u.se_log[i], se_model_form[i]);
-    u.interval[i] = {s.values[i] * std::exp(-1.96 * u.se_log[i]), s.values[i] * std::exp(1.96 * u.se_log[i])};
+    widen_interval(u, i, s.values[i], se_model_form[i]);
   }
 }
 

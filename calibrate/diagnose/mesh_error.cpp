@@ -54,9 +54,7 @@ FitState with_numerical_uncertainty(const FitState& coarse, const FitState& fine
   {
     const double se_num = std::abs(std::log(f.values[i] / coarse.values[i])) / (ratio - 1);
     se_numerical.push_back(se_num);
-    u.se_log[i] = std::hypot(u.se_log[i], se_num);
-    u.interval[i] = {f.values[i] * std::exp(-1.96 * u.se_log[i]),
-                     f.values[i] * std::exp(1.96 * u.se_log[i])};
+    widen_interval(u, i, f.values[i], se_num);
   }
   return f;
 }

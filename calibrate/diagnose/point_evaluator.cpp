@@ -16,8 +16,8 @@ std::vector<Posture> postures(const Recording& rec)
 }
 } // namespace
 
-PointEvaluator::PointEvaluator(const Recording& rec, MPI_Comm comm)
-    : _rec(rec), _comm(comm), _forward(postures(rec), comm)
+PointEvaluator::PointEvaluator(const Recording& rec, MPI_Comm comm, const CaseGroups* groups)
+    : _rec(rec), _comm(comm), _groups(groups), _forward(postures(rec), comm)
 {
 }
 
@@ -43,16 +43,21 @@ PointEvaluation PointEvaluator::operator()(const Config& c)
   const std::size_t np = _rec.postures.size();
   PointEvaluation e;
   e.distances.resize(np);
-  auto visit = [&](std::size_t i, const Model& model) { e.distances[i] = distances(i, model); };
-  const auto obs = _forward.solve(c, visit);
   // Residuals "recording - model" [m]: the distances, then the landmarks.
-  std::vector<double> raw;
-  for (std::size_t i = 0; i < np; ++i)
-    raw.insert(raw.end(), e.distances[i].begin(), e.distances[i].end());
-  for (std::size_t i = 0; i < np; ++i)
-    if (const auto& n = _rec.postures[i].nipple)
-      for (int k = 0; k < 3; ++k)
-        raw.push_back((*n)[k] - obs[i].nipple[k]);
+  auto solve_raw = [&]
+  {
+    auto visit = [&](std::size_t i, const Model& model) { e.distances[i] = distances(i, model); };
+    const auto obs = _forward.solve(c, visit);
+    std::vector<double> raw;
+    for (std::size_t i = 0; i < np; ++i)
+      raw.insert(raw.end(), e.distances[i].begin(), e.distances[i].end());
+    for (std::size_t i = 0; i < np; ++i)
+      if (const auto& n = _rec.postures[i].nipple)
+        for (int k = 0; k < 3; ++k)
+          raw.push_back((*n)[k] - obs[i].nipple[k]);
+    return raw;
+  };
+  const std::vector<double> raw = _groups ? _groups->replicate(solve_raw) : solve_raw();
   std::size_t j = 0;
   for (std::size_t i = 0; i < np; ++i)
     for (auto& d : e.distances[i])

@@ -4,6 +4,7 @@
 // the nipple landmark errors, in every recorded posture, whitened by the
 // noise (or by sigma_eff once the numerical noise floor is known). Keeps one
 // warm-started ForwardModel.
+#include "case_groups.hpp"
 #include "config.hpp"
 #include "forward_model.hpp"
 #include "recording.hpp"
@@ -26,7 +27,9 @@ struct PointEvaluation
 class PointEvaluator
 {
 public:
-  PointEvaluator(const Recording& rec, MPI_Comm comm);
+  /// On `comm`; with `groups` (comm = groups->comm()), every group solves
+  /// and all take the first group's evaluation (CaseGroups::replicate).
+  PointEvaluator(const Recording& rec, MPI_Comm comm, const CaseGroups* groups = nullptr);
   /// Collective. The evaluation of case `c`; throws SolveError.
   PointEvaluation operator()(const Config& c);
 
@@ -41,6 +44,7 @@ private:
 
   const Recording& _rec;
   MPI_Comm _comm;
+  const CaseGroups* _groups;
   ForwardModel _forward;
   std::vector<double> _sigma;
 };

@@ -184,8 +184,11 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   Checkpoint cp;
   if (o.resume)
     cp = read_checkpoint(o.checkpoint, fit);
-  ForwardModel forward(data.postures, comm, o.morph);
+  const CaseGroups groups(comm, o.ranks_per_case, "--ranks-per-case");
+  ForwardModel forward(data.postures, groups.comm(), o.morph);
   Objective f(start, data, fit, forward, cp.evaluations);
+  if (groups.groups() > 1)
+    f.spread_columns(groups);
   Run run(start, data, fit, o, f);
   if (!o.morph && changes_geometry(fit))
     run.warnings.add("remeshing for R, H (--remesh): the misfit jumps with the mesh topology, "
@@ -207,7 +210,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   OptimizerResult res = first_fit(run, oo, y0);
   nlohmann::json correction_json;
   if (o.correction_mesh_size > 0)
-    correction_json = correct_model_error(run, oo, res, comm);
+    correction_json = correct_model_error(run, oo, res, groups.comm());
 
   const double chi2_after = f.chi2(res.y);
   const std::vector<Observables> obs_after = f.observables();
@@ -238,6 +241,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
   rep["meshes_built"] = forward.meshes_built();
   rep["mesh_morphs"] = forward.morphs();
   rep["unknowns"] = forward.dofs();
+  rep["rank_groups"] = groups.groups();
   rep["wall_time_s"] = stopwatch.seconds();
   // The calibrated model in each measured posture, for the pictures (not
   // counted above: solved after the report's counts).

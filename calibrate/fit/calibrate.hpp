@@ -26,6 +26,9 @@ struct CalibrateOptions
   int correction_passes = 4;          ///< at most this many corrected fits ...
   /// ... until every ln p moves less than this or than 0.1 of its standard error
   double correction_tolerance = 0.01;
+  /// MPI ranks per forward solve: the Jacobian's columns are solved by
+  /// groups of this many ranks side by side (0: all ranks on each solve).
+  int ranks_per_case = 0;
 };
 
 struct CalibrationResult

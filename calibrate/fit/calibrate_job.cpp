@@ -17,6 +17,7 @@ std::string fit_recording(const CalibrateJob& job, const OutputTarget& out, MPI_
   DiagnoseOptions d;
   d.fit = job.request.fit;
   d.discover = false;
+  d.ranks_per_case = job.request.ranks_per_case;
   OutputDir dir(out, comm);
   const auto res = diagnose(rec, job.start, d, comm);
   write_diagnosis(dir.path(), res, rec, comm);
@@ -40,6 +41,7 @@ std::string fit_measurements(const CalibrateJob& job, const OutputTarget& out,
   co.measurements_source = r.data_file;
   co.morph = !r.remesh;
   co.correction_mesh_size = r.correction_mesh_size;
+  co.ranks_per_case = r.ranks_per_case;
   log::info("calibrating [{}] with {} against {} measurements in {} postures", r.fit, r.algorithm,
             job.data.measurements.items.size(), job.data.measurements.postures.size());
   const auto res = calibrate(job.start, job.data.measurements, job.fit, co, comm);

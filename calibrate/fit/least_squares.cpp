@@ -115,18 +115,27 @@ bool solve_dense(Matrix A, std::vector<double> b, std::vector<double>& x)
 }
 
 Matrix fd_jacobian(const ResidualFunction& f, const std::vector<double>& y,
-                   const std::vector<double>& r0, double step, int& evaluations)
+                   const std::vector<double>& r0, double step, int& evaluations,
+                   const CaseGroups* groups)
 {
-  Matrix J(r0.size(), std::vector<double>(y.size()));
-  for (std::size_t j = 0; j < y.size(); ++j)
+  // Column j: J_ij = (r_i(y + h e_j) - r_i(y)) / h.
+  auto column = [&](std::size_t j)
   {
     auto yp = y;
     yp[j] += step;
-    const auto rp = f(yp);
-    ++evaluations;
+    return f(yp);
+  };
+  std::vector<std::vector<double>> rp(y.size());
+  if (groups)
+    rp = groups->map(y.size(), column);
+  else
+    for (std::size_t j = 0; j < y.size(); ++j)
+      rp[j] = column(j);
+  evaluations += static_cast<int>(y.size());
+  Matrix J(r0.size(), std::vector<double>(y.size()));
+  for (std::size_t j = 0; j < y.size(); ++j)
     for (std::size_t i = 0; i < r0.size(); ++i)
-      J[i][j] = (rp[i] - r0[i]) / step;
-  }
+      J[i][j] = (rp[j][i] - r0[i]) / step;
   return J;
 }
 
@@ -150,7 +159,7 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
   {
     if (!have_J)
     {
-      res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations);
+      res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);
       have_J = true;
     }
     Matrix A;
@@ -178,7 +187,7 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
     }
   }
   if (!have_J) // Jacobian at the final point (uncertainty, score tests)
-    res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations);
+    res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);
   return res;
 }
 } // namespace breastsim::calibration

@@ -5,6 +5,7 @@
 // lambda / 3 after a successful step, x 4 after a rejected one (Marquardt).
 // Used by the diagnosis, where each r(y) is a set of warm-started posture
 // solves and the residual vector is long (every recorded point).
+#include "case_groups.hpp"
 #include "objective.hpp"
 #include <functional>
 #include <string>
@@ -20,6 +21,9 @@ struct LsqOptions
   double fd_step = 1e-3;   ///< forward-difference step in y
   double xtol = 1e-3;      ///< stop when max |dy| falls below this
   double ftol_rel = 1e-6;  ///< ... or chi2 decreases less than this, relatively
+  /// The Jacobian's columns over MPI sub-communicators (--ranks-per-case);
+  /// null: in turn, on the residual function's communicator.
+  const CaseGroups* groups = nullptr;
 };
 
 struct LsqResult
@@ -34,8 +38,10 @@ struct LsqResult
 };
 
 /// Forward-difference Jacobian of f at y (r0 = f(y) given); counts evaluations.
+/// With `groups`, column j is solved by the group that runs case j.
 Matrix fd_jacobian(const ResidualFunction& f, const std::vector<double>& y,
-                   const std::vector<double>& r0, double step, int& evaluations);
+                   const std::vector<double>& r0, double step, int& evaluations,
+                   const CaseGroups* groups = nullptr);
 
 /// Minimise |f(y)|^2 over lo <= y <= hi from y0. `progress(iteration, chi2, y)`
 /// is called after every accepted step.

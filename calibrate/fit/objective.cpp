@@ -25,16 +25,18 @@ void Objective::set_correction(std::vector<double> d)
   _best_chi2 = std::numeric_limits<double>::infinity();
 }
 
-const std::vector<double>& Objective::residuals(const std::vector<double>& y)
+std::vector<double> Objective::solve(const std::vector<double>& y, std::vector<Observables>& obs)
 {
-  if (!_last_y.empty() && y == _last_y)
-    return _last_r;
-  _obs = _forward.solve(with_parameters(_base, _fit, y));
-  _last_r = weighted_residuals(_data, _obs);
+  obs = _forward.solve(with_parameters(_base, _fit, y));
+  std::vector<double> r = weighted_residuals(_data, obs);
   for (std::size_t i = 0; i < _correction.size(); ++i)
-    _last_r[i] += _correction[i] / _data.items[i].sigma; // r_i = (G_i + d_i - G_obs,i) / sigma_i
-  _last_y = y;
-  Evaluation e{++_evaluations, y, calibration::chi2(_last_r), false};
+    r[i] += _correction[i] / _data.items[i].sigma; // r_i = (G_i + d_i - G_obs,i) / sigma_i
+  return r;
+}
+
+void Objective::record(const std::vector<double>& y, const std::vector<double>& r)
+{
+  Evaluation e{++_evaluations, y, calibration::chi2(r), false};
   if (e.chi2 < _best_chi2)
   {
     set_best(y, e.chi2);
@@ -42,33 +44,61 @@ const std::vector<double>& Objective::residuals(const std::vector<double>& y)
   }
   if (_callback)
     _callback(e);
+}
+
+const std::vector<double>& Objective::residuals(const std::vector<double>& y)
+{
+  if (!_last_y.empty() && y == _last_y)
+    return _last_r;
+  // Every group solves the point; all take the first group's r (same decisions on every rank).
+  _last_r = _groups ? _groups->replicate([&] { return solve(y, _obs); }) : solve(y, _obs);
+  _last_y = y;
+  record(y, _last_r);
   return _last_r;
 }
 
 double Objective::chi2(const std::vector<double>& y) { return calibration::chi2(residuals(y)); }
 
+std::vector<std::vector<double>> Objective::residuals_at(const std::vector<std::vector<double>>& points)
+{
+  // The last point stays the caller's (e.g. the Jacobian's base point): a
+  // column's solve does not replace it, on any group.
+  auto solve_point = [&](std::size_t k)
+  {
+    std::vector<Observables> obs;
+    return solve(points[k], obs);
+  };
+  std::vector<std::vector<double>> r(points.size());
+  if (_groups)
+    r = _groups->map(points.size(), solve_point);
+  else
+    for (std::size_t k = 0; k < points.size(); ++k)
+      r[k] = solve_point(k);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    record(points[k], r[k]);
+  return r;
+}
+
 Matrix Objective::jacobian(const std::vector<double>& y, double h, bool central)
 {
   const std::vector<double> r0 = residuals(y);
+  // Forward: (r(y + h e_j) - r(y)) / h;  central: (r(y + h e_j) - r(y - h e_j)) / 2h.
+  std::vector<std::vector<double>> points;
+  for (std::size_t j = 0; j < y.size(); ++j)
+    for (const double sign : central ? std::vector<double>{1.0, -1.0} : std::vector<double>{1.0})
+    {
+      points.push_back(y);
+      points.back()[j] += sign * h;
+    }
+  const auto r = residuals_at(points);
+  const std::size_t per_column = central ? 2 : 1;
   Matrix J(r0.size(), std::vector<double>(y.size()));
   for (std::size_t j = 0; j < y.size(); ++j)
   {
-    // Forward: (r(y + h e_j) - r(y)) / h;  central: (r(y + h e_j) - r(y - h e_j)) / 2h.
-    const double hj = h;
-    std::vector<double> yp = y;
-    yp[j] += hj;
-    const std::vector<double> rp = residuals(yp);
-    std::vector<double> rm = r0;
-    double step = hj;
-    if (central)
-    {
-      std::vector<double> ym = y;
-      ym[j] -= hj;
-      rm = residuals(ym);
-      step = 2 * hj;
-    }
+    const auto& rp = r[per_column * j];
+    const auto& rm = central ? r[per_column * j + 1] : r0;
     for (std::size_t i = 0; i < r0.size(); ++i)
-      J[i][j] = (rp[i] - rm[i]) / step;
+      J[i][j] = (rp[i] - rm[i]) / (central ? 2 * h : h);
   }
   return J;
 }

@@ -4,6 +4,7 @@
 // its finite-difference Jacobian J = dr/dy (forward differences of
 // warm-started solves) and gradient d chi2/dy = 2 J^T r. Counts evaluations,
 // keeps the best point and reports progress after each evaluation.
+#include "case_groups.hpp"
 #include "fit_parameters.hpp"
 #include "forward_model.hpp"
 #include "measurements.hpp"
@@ -28,6 +29,12 @@ class Objective
 public:
   Objective(Config base, const Measurements& data, std::vector<FitParameter> fit,
             ForwardModel& forward, int evaluations_done = 0);
+
+  /// Solve the Jacobian's columns over MPI sub-communicators: the forward
+  /// model then lives on groups.comm(), and every group evaluates the
+  /// points other than the columns itself, the first group's residuals
+  /// taken by all (--ranks-per-case).
+  void spread_columns(const CaseGroups& groups) { _groups = &groups; }
 
   /// Called after every new evaluation (progress lines, checkpoint).
   void on_evaluation(std::function<void(const Evaluation&)> f) { _callback = std::move(f); }
@@ -58,6 +65,14 @@ public:
   const Config& base() const { return _base; }
 
 private:
+  /// Weighted, corrected residuals of a forward solve at y, and its observables.
+  std::vector<double> solve(const std::vector<double>& y, std::vector<Observables>& obs);
+  /// Count the evaluation at y, keep the best point, call the callback.
+  void record(const std::vector<double>& y, const std::vector<double>& r);
+  /// r at each point, over the groups (bookkeeping in order on every rank).
+  std::vector<std::vector<double>> residuals_at(const std::vector<std::vector<double>>& points);
+
+  const CaseGroups* _groups = nullptr;
   Config _base;
   const Measurements& _data;
   std::vector<FitParameter> _fit;

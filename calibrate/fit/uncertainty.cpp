@@ -45,6 +45,12 @@ bool invert_spd(Matrix& A)
   return true;
 }
 
+void widen_interval(Uncertainty& u, std::size_t i, double p, double se_extra)
+{
+  u.se_log[i] = std::hypot(u.se_log[i], se_extra);
+  u.interval[i] = {p * std::exp(-1.96 * u.se_log[i]), p * std::exp(1.96 * u.se_log[i])};
+}
+
 Uncertainty gauss_newton_uncertainty(const Matrix& J, const std::vector<double>& y,
                                      const std::vector<std::string>& names,
                                      double variance_factor)

@@ -30,6 +30,11 @@ constexpr double max_correlation = 0.99;
 /// SE of ln p beyond this (about 100 % relative error) is reported as undetermined.
 constexpr double max_se_log = 0.7;
 
+/// Adds an independent error source of SE `se_extra` (in ln p) to
+/// parameter i at value p: SE = hypot(SE, se_extra), the 95 % interval
+/// recomputed around p as [p exp(-1.96 SE), p exp(1.96 SE)].
+void widen_interval(Uncertainty& u, std::size_t i, double p, double se_extra);
+
 Uncertainty gauss_newton_uncertainty(const Matrix& J, const std::vector<double>& y,
                                      const std::vector<std::string>& names,
                                      double variance_factor = 1.0);

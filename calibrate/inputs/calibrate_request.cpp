@@ -1,4 +1,5 @@
 #include "calibrate_request.hpp"
+#include "case_groups.hpp"
 #include "geometry_options.hpp"
 #include "errors.hpp"
 #include "json_file.hpp"
@@ -22,6 +23,7 @@ void check_calibrate_request(const CalibrateRequest& r, const Config& start)
     fine.set("geometry.mesh_size", r.correction_mesh_size);
     fine.validate();
   }
+  CaseGroups::check(MPI_COMM_WORLD, r.ranks_per_case, "--ranks-per-case");
   // Checked here, before a long fit (render.py checks it again).
   int w = 0, ht = 0;
   char rest = 0;

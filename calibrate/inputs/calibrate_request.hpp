@@ -21,6 +21,7 @@ struct CalibrateRequest
   bool remesh = false;                 ///< remesh for R, H instead of morphing
   double correction_mesh_size = 0;     ///< > 0: model-error correction from this mesh [m]
   std::string picture_size = "800x600";
+  int ranks_per_case = 0;              ///< MPI ranks per forward solve (0: all)
 };
 
 /// --max-evals >= 1; --correction-mesh-size 0 or in (0, geometry.mesh_size)

@@ -54,6 +54,11 @@ Command add_calibrate_command(CLI::App& root)
                   "finer mesh of this size [m] and fit again (docs/CALIBRATION.md)");
   app->add_option("--size", o->r.picture_size, "picture size WIDTHxHEIGHT in pixels")
       ->capture_default_str();
+  app->add_option("--ranks-per-case", o->r.ranks_per_case,
+                  "MPI ranks per forward solve: the ranks split into groups of this many, which "
+                  "solve the finite-difference Jacobian's columns side by side (0: all ranks on "
+                  "each solve; must divide the number of ranks)")
+      ->capture_default_str();
   return {app, [o]()
           {
             const Config c = load_case(o->case_file, o->sets);

@@ -2,6 +2,7 @@
 // simulation and a 3D recording differ, name the physics that was left out,
 // model it, refit and show the fit improve (docs/DIAGNOSE.md).
 #include "candidates.hpp"
+#include "case_groups.hpp"
 #include "command.hpp"
 #include "diagnosis_output.hpp"
 #include "fit_parameters.hpp"
@@ -53,11 +54,17 @@ Command add_diagnose_command(CLI::App& root)
                   "continuum with this order (0: off)")->capture_default_str();
   app->add_flag("!--no-held-out", o->d.held_out_check,
                 "do not require a gain in the prediction of held-out postures");
+  app->add_option("--ranks-per-case", o->d.ranks_per_case,
+                  "MPI ranks per forward solve: the ranks split into groups of this many, which "
+                  "solve the Jacobian columns and candidate probes side by side (0: all ranks on "
+                  "each solve; must divide the number of ranks)")
+      ->capture_default_str();
   return {app, [o]()
           {
             const Config c = load_case(o->case_file, o->sets);
             const auto rec = calibration::read_recording(o->recording);
             o->d.candidates = split_list(o->candidates);
+            CaseGroups::check(MPI_COMM_WORLD, o->d.ranks_per_case, "--ranks-per-case");
             check_picture_tools(MPI_COMM_WORLD); // fail before the solves, not after
             const auto out = claim_output(o->out, "results/diagnosis", {o->recording, o->case_file});
             std::cout << calibration::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Fits over MPI sub-communicators: the wall time of
+#  - `calibrate` (default case, --fit mu,c,lambda --algorithm lbfgs: three
+#    finite-difference Jacobian columns per gradient) and
+#  - `diagnose` on independent-truth recordings of the issue-17 benchmark
+#    (4 postures x 2000 points; a control and a strong skin effect;
+#    --fit mu,lambda: two columns, up to four candidate probes)
+# on 1 rank and on 2 ranks with --ranks-per-case 1 (each rank solves its
+# own Jacobian columns and probes; the other solves are replicated).
+# REPEATS times in turn (default 3); medians and the median of the ratios
+# against the 1-rank run of the same repetition.
+# Usage: bash bench/fit_groups.sh [BUILD_DIR] [REPEATS]
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+repo="$(cd "$here/.." && pwd)"
+bin="$(cd "${1:-$repo/build}" && pwd)/breastsim"
+repeats="${2:-3}"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+"$bin" -q measure "$repo/cases/default.toml" --noise 0.0005 --seed 3 --out "$work/m.json" >/dev/null
+printf '[tissue]\nmu = 300.0\n' >"$work/start.toml"
+cal=(calibrate "$work/m.json" --case "$work/start.toml" --fit mu,c,lambda --algorithm lbfgs
+     --max-evals 30 --size 320x240)
+dia() { # RECORDING_NAME: the benchmark's diagnose arguments
+  echo diagnose "$here/truth/recordings/$1.json" --case "$repo/cases/default.toml" \
+    --set base.fixed=true --set terms.base_springs=false --set terms.skin=false --fit mu,lambda
+}
+timed() { # OUT_NAME COMMAND...: wall seconds
+  local name="$1" t0 t1; shift
+  t0=$(date +%s.%N); "$@" --out "$work/$name" >"$work/$name.log" 2>&1; t1=$(date +%s.%N)
+  rm -rf "${work:?}/$name"
+  awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.2f", b - a}'
+}
+: >"$work/times"
+for i in $(seq 1 "$repeats"); do
+  row=""
+  for job in calibrate control_01 skin_strong_1; do
+    if [ "$job" = calibrate ]; then args=("${cal[@]}"); else read -r -a args <<<"$(dia "$job")"; fi
+    s=$(timed "s_$job" "$bin" -q "${args[@]}")
+    g=$(timed "g_$job" mpirun -n 2 "$bin" -q "${args[@]}" --ranks-per-case 1)
+    echo "run $i, $job: 1 rank $s s; 2 ranks --ranks-per-case 1: $g s"
+    row="$row $s $g"
+  done
+  echo "$row" >>"$work/times"
+done
+python3 - "$work/times" <<'PY'
+import statistics, sys
+rows = [list(map(float, l.split())) for l in open(sys.argv[1])]
+for k, job in enumerate(["calibrate mu,c,lambda", "diagnose control_01", "diagnose skin_strong_1"]):
+    s = statistics.median(r[2 * k] for r in rows)
+    g = statistics.median(r[2 * k + 1] for r in rows)
+    ratio = statistics.median(r[2 * k] / r[2 * k + 1] for r in rows)
+    print(f"{job}: medians over {len(rows)}: 1 rank {s:.1f} s; 2 ranks --ranks-per-case 1 {g:.1f} s "
+          f"(speed-up {ratio:.2f})")
+PY
