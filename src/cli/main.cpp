@@ -108,6 +108,7 @@ int main(int argc, char** argv)
       cli::add_neutral_state_command(app),
       cli::add_scan_model_command(app),
       cli::add_synthetic_patient_command(app),
+      cli::add_scan_calibrate_command(app),
   };
 
   if (const std::string sub = unknown_subcommand(argc, argv, app); !sub.empty())

@@ -1,0 +1,338 @@
+#include "scan_calibration.hpp"
+#include "breastsim_registry.hpp"
+#include "case_options.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include "mesh_from_gmsh.hpp"
+#include "msh_writer.hpp"
+#include "output.hpp"
+#include "model_setup.hpp"
+#include "newton.hpp"
+#include "on_root.hpp"
+#include "solver_options.hpp"
+#include "surface_distance.hpp"
+#include "surface_export.hpp"
+#include "timer.hpp"
+#include "warm_start.hpp"
+#include <algorithm>
+#include <cmath>
+#include <dolfinx/common/IndexMap.h>
+#include <fmt/format.h>
+
+namespace breastsim::calibration
+{
+namespace
+{
+/// Node coordinates of the distributed mesh in the root mesh's numbering,
+/// gathered on rank 0 (as the neutral-state job writes its reference).
+std::vector<double> gather_nodes(const dolfinx::mesh::Mesh& mesh, std::size_t num_nodes)
+{
+  const auto& g = mesh.geometry();
+  const std::int32_t owned = g.index_map()->size_local();
+  std::vector<double> mine;
+  for (std::int32_t i = 0; i < owned; ++i)
+    mine.insert(mine.end(), {static_cast<double>(g.input_global_indices()[i]), g.x()[3 * i],
+                             g.x()[3 * i + 1], g.x()[3 * i + 2]});
+  const int size = static_cast<int>(mine.size());
+  std::vector<int> sizes(dolfinx::MPI::size(mesh.comm())), offsets(sizes.size(), 0);
+  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, mesh.comm());
+  for (std::size_t r = 1; r < sizes.size(); ++r)
+    offsets[r] = offsets[r - 1] + sizes[r - 1];
+  std::vector<double> all(rank_of(mesh.comm()) == 0 ? offsets.back() + sizes.back() : 0);
+  MPI_Gatherv(mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(), MPI_DOUBLE, 0,
+              mesh.comm());
+  std::vector<double> x(rank_of(mesh.comm()) == 0 ? 3 * num_nodes : 0);
+  for (std::size_t k = 0; k + 3 < all.size(); k += 4)
+    std::copy(&all[k + 1], &all[k + 4], &x[3 * static_cast<std::size_t>(all[k])]);
+  return x;
+}
+
+/// One evaluation: the neutral state of the meshed scan for case `c` and the
+/// signed normal distances of each target scan's points to its posture's
+/// simulated skin (every rank gets them).
+struct ScanEvaluation
+{
+  std::vector<std::vector<double>> distances; ///< per target, per point [m]
+  std::vector<double> reference;              ///< rank 0, with keep_reference
+  InverseReport inverse;
+};
+
+ScanEvaluation evaluate(const ScanCalibrationRequest& r, const Config& c, const std::vector<const ScanPoints*>& targets,
+                    bool keep_reference, MPI_Comm comm)
+{
+  const CaseOptions co = CaseOptions::from(c);
+  Model model(to_dolfinx(comm, r.mesh, r.mesh.order), Constraints{true, co.fixed_base});
+  apply_parameters(c, model);
+  const SolverOptions so = SolverOptions::from(c);
+  NewtonSolver newton(model, so.newton);
+  double f = set_gravity(model, gravity_vector(r.source.posture.theta_deg, co.gravity));
+  ScanEvaluation e;
+  e.inverse = inverse_neutral_state(model, newton, r.inverse, f);
+  if (keep_reference)
+    e.reference = gather_nodes(*model.mesh().mesh, r.mesh.num_nodes());
+  const Guess last{[](Model&, std::string&) { return true; }, "the neutral state's u", true};
+  double theta = r.source.posture.theta_deg; // u is the inverse's forward solve in the source posture
+  for (const ScanPoints* t : targets)
+  {
+    std::vector<double> d(t->points.size());
+    if (t->posture.theta_deg != theta)
+    {
+      theta = t->posture.theta_deg;
+      f = set_gravity(model, gravity_vector(t->posture.theta_deg, co.gravity));
+      solve_at_full_load(model, newton, last, r.inverse.ramp,
+                         fmt::format("scan calibration, posture {}", t->posture.name), f);
+    }
+    const SkinSurface s = gather_skin_surface(model);
+    if (rank_of(comm) == 0)
+    {
+      const std::vector<SurfaceMatch> m = match_points(s, t->points);
+      for (std::size_t i = 0; i < m.size(); ++i)
+        d[i] = m[i].distance;
+    }
+    MPI_Bcast(d.data(), static_cast<int>(d.size()), MPI_DOUBLE, 0, comm);
+    e.distances.push_back(std::move(d));
+  }
+  return e;
+}
+
+ScanDistance distance_summary(const ScanPoints& s, const std::vector<double>& d, double margin)
+{
+  ScanDistance out{s.file, s.posture.name, s.points.size(), 0, 0, 0, 0, s.sigma};
+  double sum = 0, sum_all = 0;
+  for (std::size_t i = 0; i < d.size(); ++i)
+  {
+    sum_all += d[i] * d[i];
+    if (s.points[i][1] < margin)
+      continue;
+    ++out.used;
+    sum += d[i] * d[i];
+    out.max = std::max(out.max, std::abs(d[i]));
+  }
+  out.rms = std::sqrt(sum / std::max<std::size_t>(out.used, 1));
+  out.rms_all = std::sqrt(sum_all / std::max<std::size_t>(d.size(), 1));
+  return out;
+}
+
+nlohmann::json distance_json(const ScanDistance& d)
+{
+  return {{"file", d.file},       {"posture", d.posture}, {"points", d.points},
+          {"points_used", d.used}, {"rms_mm", 1e3 * d.rms}, {"max_mm", 1e3 * d.max},
+          {"rms_all_points_mm", 1e3 * d.rms_all}, {"sigma_mm", 1e3 * d.sigma}};
+}
+} // namespace
+
+ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm comm)
+{
+  const Stopwatch watch("scan calibration");
+  ScanCalibrationResult res;
+  res.parameters = r.parameters;
+  std::vector<std::string> names;
+  std::vector<double> lo, hi;
+  for (const auto& p : r.parameters)
+  {
+    names.push_back(p.name);
+    lo.push_back(std::log(p.lower));
+    hi.push_back(std::log(p.upper));
+  }
+  const std::vector<double> y0 = to_log(r.parameters, r.start);
+  std::vector<const ScanPoints*> fit_targets;
+  for (const auto& s : r.fit)
+    fit_targets.push_back(&s);
+  std::vector<std::pair<std::size_t, std::size_t>> index; // (target, point) of each residual, off the chest
+  for (std::size_t t = 0; t < r.fit.size(); ++t)
+    for (std::size_t i = 0; i < r.fit[t].points.size(); ++i)
+      if (r.fit[t].points[i][1] >= r.chest_margin)
+        index.emplace_back(t, i);
+  if (index.size() < 10 * r.parameters.size())
+    throw InputError(fmt::format("scan calibration: only {} scan points lie {:.1f} mm or more off the chest "
+                                 "(--chest-margin): too few for {} parameters",
+                                 index.size(), 1e3 * r.chest_margin, r.parameters.size()));
+  auto residuals = [&](const std::vector<std::vector<double>>& d)
+  {
+    std::vector<double> res_v(index.size());
+    for (std::size_t k = 0; k < index.size(); ++k)
+      res_v[k] = d[index[k].first][index[k].second] / r.fit[index[k].first].sigma;
+    return res_v;
+  };
+  int evaluation = 0;
+  ResidualFunction f = [&](const std::vector<double>& y) -> std::vector<double>
+  {
+    const Config c = with_parameters(r.start, r.parameters, y);
+    std::string ps;
+    for (std::size_t j = 0; j < y.size(); ++j)
+      ps += fmt::format("{}{} = {:.6g} {}", j ? ", " : "", names[j], std::exp(y[j]), r.parameters[j].unit);
+    try
+    {
+      const ScanEvaluation e = evaluate(r, c, fit_targets, false, comm);
+      const std::vector<double> v = residuals(e.distances);
+      double chi2 = 0;
+      for (double x : v)
+        chi2 += x * x;
+      log::info("scan calibration, evaluation {}: {}: chi2 {:.6g} ({} inverse iterations)", ++evaluation, ps, chi2,
+                e.inverse.iterations.size());
+      return v;
+    }
+    catch (const SolveError& err)
+    {
+      if (evaluation == 0)
+        throw;
+      // A trial step the material cannot hold: a large misfit rejects the step.
+      log::warn("scan calibration, evaluation {}: {}: {} (step rejected)", ++evaluation, ps, err.what());
+      return std::vector<double>(index.size(), 1e3);
+    }
+  };
+  {
+    const ScanEvaluation e0 = evaluate(r, r.start, fit_targets, false, comm);
+    for (std::size_t t = 0; t < r.fit.size(); ++t)
+      res.at_start.push_back(distance_summary(r.fit[t], e0.distances[t], r.chest_margin));
+  }
+  const LsqResult lsq = levenberg_marquardt(f, y0, lo, hi, r.lsq);
+  res.residuals = lsq.r.size();
+  res.chi2 = lsq.chi2;
+  const double dof = std::max<double>(1, double(lsq.r.size()) - double(y0.size()));
+  res.reduced_chi2 = lsq.chi2 / dof;
+  res.evaluations = lsq.evaluations + 1;
+  res.iterations = lsq.iterations;
+  res.stop_reason = lsq.stop_reason;
+  res.uncertainty = gauss_newton_uncertainty(lsq.J, lsq.y, names, std::max(1.0, res.reduced_chi2));
+  for (std::size_t j = 0; j < y0.size(); ++j)
+  {
+    res.start.push_back(std::exp(y0[j]));
+    res.value.push_back(std::exp(lsq.y[j]));
+  }
+  res.calibrated = with_parameters(r.start, r.parameters, lsq.y);
+
+  // The fitted neutral state and every scan against it: the source scan, the
+  // fitted ones and the held-out ones.
+  std::vector<const ScanPoints*> all = {&r.source};
+  for (const auto& s : r.fit)
+    all.push_back(&s);
+  for (const auto& s : r.predict)
+    all.push_back(&s);
+  const ScanEvaluation e = evaluate(r, res.calibrated, all, true, comm);
+  res.inverse = e.inverse;
+  for (std::size_t t = 0; t < all.size(); ++t)
+    (t <= r.fit.size() ? res.fitted : res.predicted)
+        .push_back(distance_summary(*all[t], e.distances[t], r.chest_margin));
+  if (rank_of(comm) == 0)
+  {
+    res.reference = r.mesh;
+    res.reference.x = e.reference;
+    // A full breast's nipple may leave x = 0: the reference is shifted
+    // rigidly along x to keep it there (as neutral-state does).
+    const bool half = std::count(r.mesh.facet_tags.begin(), r.mesh.facet_tags.end(), generated::tag("symmetry")) > 0;
+    if (!half)
+    {
+      res.shift_x = -res.reference.x[3 * r.nipple_node];
+      for (std::size_t n = 0; n < res.reference.num_nodes(); ++n)
+        res.reference.x[3 * n] += res.shift_x;
+    }
+    for (int k = 0; k < 3; ++k)
+      res.nipple[k] = res.reference.x[3 * r.nipple_node + k];
+  }
+  MPI_Bcast(res.nipple.data(), 3, MPI_DOUBLE, 0, comm);
+  MPI_Bcast(&res.shift_x, 1, MPI_DOUBLE, 0, comm);
+  res.calibrated.set("geometry.mesh_file", std::string("reference.msh"));
+  res.calibrated.set("geometry.H", res.nipple[1]);
+  res.calibrated.set("geometry.nipple_z", res.nipple[2]);
+  res.calibrated.set("geometry.refinements", std::int64_t(0));
+  res.seconds = watch.seconds();
+  return res;
+}
+
+nlohmann::json scan_calibration_json(const ScanCalibrationResult& r)
+{
+  nlohmann::json params = nlohmann::json::array();
+  for (std::size_t j = 0; j < r.parameters.size(); ++j)
+  {
+    const auto& u = r.uncertainty;
+    params.push_back({{"name", r.parameters[j].name},
+                      {"key", r.parameters[j].key},
+                      {"unit", r.parameters[j].unit},
+                      {"start", r.start[j]},
+                      {"value", r.value[j]},
+                      {"bounds", {r.parameters[j].lower, r.parameters[j].upper}},
+                      {"se_log", std::isfinite(u.se_log[j]) ? nlohmann::json(u.se_log[j]) : nlohmann::json()},
+                      {"relative_se_percent", std::isfinite(u.se_log[j]) ? nlohmann::json(100 * u.se_log[j])
+                                                                         : nlohmann::json()},
+                      {"interval95", {u.interval[j][0], u.interval[j][1]}},
+                      {"flag", u.flags[j]}});
+  }
+  nlohmann::json corr = r.uncertainty.singular ? nlohmann::json() : nlohmann::json(r.uncertainty.correlation);
+  auto list = [](const std::vector<ScanDistance>& v)
+  {
+    nlohmann::json a = nlohmann::json::array();
+    for (const auto& d : v)
+      a.push_back(distance_json(d));
+    return a;
+  };
+  nlohmann::json it = nlohmann::json::array();
+  for (const auto& i : r.inverse.iterations)
+    it.push_back({{"mismatch_rms_m", i.rms_mismatch}, {"mismatch_max_m", i.max_mismatch}});
+  return {{"method", "neutral state by the inverse solve from the first scan; forward solves to the other scans' "
+                     "postures; Levenberg-Marquardt on their points' normal distances / sigma in y = ln p; "
+                     "Gauss-Newton covariance (scaled by the reduced chi2 when above 1)"},
+          {"parameters", params},
+          {"correlation", corr},
+          {"singular", r.uncertainty.singular},
+          {"chi2", r.chi2},
+          {"reduced_chi2", r.reduced_chi2},
+          {"residuals", r.residuals},
+          {"evaluations", r.evaluations},
+          {"iterations", r.iterations},
+          {"stop_reason", r.stop_reason},
+          {"scans_at_start", list(r.at_start)},
+          {"scans_fitted", list(r.fitted)},
+          {"scans_predicted", list(r.predicted)},
+          {"neutral_state", {{"inverse_iterations", it}, {"converged", r.inverse.converged},
+                             {"nipple_m", r.nipple}, {"reference_shift_x_m", r.shift_x}}},
+          {"wall_time_s", r.seconds}};
+}
+
+void write_scan_calibration(const ScanCalibrationRequest& r, const ScanCalibrationResult& res,
+                            const nlohmann::json& inputs, const OutputTarget& out, MPI_Comm comm)
+{
+  OutputDir dir(out, comm);
+  if (rank_of(comm) == 0)
+  {
+    std::map<int, std::string> names;
+    for (const char* n : {"base", "skin", "symmetry"})
+      if (std::count(r.mesh.facet_tags.begin(), r.mesh.facet_tags.end(), generated::tag(n)) > 0)
+        names[generated::tag(n)] = n;
+    meshes::write_msh22(r.mesh, names, dir.path() / "scan.msh");
+    meshes::write_msh22(res.reference, names, dir.path() / "reference.msh");
+  }
+  std::string head = "# breastsim scan-calibrate: the neutral state (reference.msh) and the material fitted to the scans\n";
+  for (std::size_t j = 0; j < res.parameters.size(); ++j)
+    head += fmt::format("#   {} = {:.6g} {} (95 % interval [{:.6g}, {:.6g}])\n", res.parameters[j].key, res.value[j],
+                        res.parameters[j].unit, res.uncertainty.interval[j][0], res.uncertainty.interval[j][1]);
+  write_text(dir.path() / "case.toml", head + res.calibrated.to_toml(), comm);
+  nlohmann::json j = scan_calibration_json(res);
+  j["inputs"] = inputs;
+  write_json(dir.path() / "report.json", j, comm);
+  dir.commit();
+}
+
+std::string scan_calibration_table(const ScanCalibrationResult& r)
+{
+  std::string s = fmt::format("scan calibration: {} evaluations, {} iterations ({}); chi2 {:.4g}, reduced {:.3f}, "
+                              "{:.1f} s\n",
+                              r.evaluations, r.iterations, r.stop_reason, r.chi2, r.reduced_chi2, r.seconds);
+  for (std::size_t j = 0; j < r.parameters.size(); ++j)
+    s += fmt::format("  {:<6} {:12.6g} {}  (start {:.6g}; SE {:.2f} %, 95 % interval [{:.6g}, {:.6g}]) {}\n",
+                     r.parameters[j].name, r.value[j], r.parameters[j].unit, r.start[j],
+                     100 * r.uncertainty.se_log[j], r.uncertainty.interval[j][0], r.uncertainty.interval[j][1],
+                     r.uncertainty.flags[j]);
+  auto rows = [&](const char* what, const std::vector<ScanDistance>& v)
+  {
+    for (const auto& d : v)
+      s += fmt::format("  {:<9} {:<10} RMS {:.3f} mm, max {:.3f} mm ({} of {} points off the chest; all points "
+                       "{:.3f} mm)\n",
+                       what, d.posture, 1e3 * d.rms, 1e3 * d.max, d.used, d.points, 1e3 * d.rms_all);
+  };
+  rows("start", r.at_start);
+  rows("fitted", r.fitted);
+  rows("predicted", r.predicted);
+  return s;
+}
+} // namespace breastsim::calibration
