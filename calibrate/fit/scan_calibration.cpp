@@ -57,11 +57,11 @@ struct ScanEvaluation
   InverseReport inverse;
 };
 
-ScanEvaluation evaluate(const ScanCalibrationRequest& r, const Config& c, const std::vector<const ScanPoints*>& targets,
-                    bool keep_reference, MPI_Comm comm)
+ScanEvaluation evaluate(const ScanCalibrationRequest& r, const meshes::TaggedMesh& mesh, const Config& c,
+                        const std::vector<const ScanPoints*>& targets, bool keep_reference, MPI_Comm comm)
 {
   const CaseOptions co = CaseOptions::from(c);
-  Model model(to_dolfinx(comm, r.mesh, r.mesh.order), Constraints{true, co.fixed_base});
+  Model model(to_dolfinx(comm, mesh, mesh.order), Constraints{true, co.fixed_base});
   apply_parameters(c, model);
   const SolverOptions so = SolverOptions::from(c);
   NewtonSolver newton(model, so.newton);
@@ -69,7 +69,7 @@ ScanEvaluation evaluate(const ScanCalibrationRequest& r, const Config& c, const 
   ScanEvaluation e;
   e.inverse = inverse_neutral_state(model, newton, r.inverse, f);
   if (keep_reference)
-    e.reference = gather_nodes(*model.mesh().mesh, r.mesh.num_nodes());
+    e.reference = gather_nodes(*model.mesh().mesh, mesh.num_nodes());
   const Guess last{[](Model&, std::string&) { return true; }, "the neutral state's u", true};
   double theta = r.source.posture.theta_deg; // u is the inverse's forward solve in the source posture
   for (const ScanPoints* t : targets)
@@ -155,6 +155,7 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     return res_v;
   };
   int evaluation = 0;
+  const meshes::TaggedMesh* mesh = &r.mesh;
   ResidualFunction f = [&](const std::vector<double>& y) -> std::vector<double>
   {
     const Config c = with_parameters(r.start, r.parameters, y);
@@ -163,7 +164,7 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
       ps += fmt::format("{}{} = {:.6g} {}", j ? ", " : "", names[j], std::exp(y[j]), r.parameters[j].unit);
     try
     {
-      const ScanEvaluation e = evaluate(r, c, fit_targets, false, comm);
+      const ScanEvaluation e = evaluate(r, *mesh, c, fit_targets, false, comm);
       const std::vector<double> v = residuals(e.distances);
       double chi2 = 0;
       for (double x : v)
@@ -182,7 +183,7 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     }
   };
   {
-    const ScanEvaluation e0 = evaluate(r, r.start, fit_targets, false, comm);
+    const ScanEvaluation e0 = evaluate(r, r.mesh, r.start, fit_targets, false, comm);
     for (std::size_t t = 0; t < r.fit.size(); ++t)
       res.at_start.push_back(distance_summary(r.fit[t], e0.distances[t], r.chest_margin));
   }
@@ -200,6 +201,35 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     res.start.push_back(std::exp(y0[j]));
     res.value.push_back(std::exp(lsq.y[j]));
   }
+  res.se_log_noise = res.uncertainty.se_log;
+  res.mesh_ratio = r.mesh_ratio;
+  auto count_cells = [&](const meshes::TaggedMesh& m)
+  {
+    std::size_t n = m.num_cells();
+    MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, comm);
+    return n;
+  };
+  res.tetrahedra = count_cells(r.mesh);
+  if (r.mesh_ratio > 0)
+  {
+    res.coarse_tetrahedra = count_cells(r.coarse_mesh);
+    log::info("scan calibration: the fit again on a mesh {:g} times coarser ({} tetrahedra), for its "
+              "discretisation error", r.mesh_ratio, res.coarse_tetrahedra);
+    mesh = &r.coarse_mesh;
+    const LsqResult coarse = levenberg_marquardt(f, lsq.y, lo, hi, r.lsq);
+    res.evaluations += coarse.evaluations;
+    auto& u = res.uncertainty;
+    for (std::size_t j = 0; j < y0.size(); ++j)
+    {
+      res.coarse_value.push_back(std::exp(coarse.y[j]));
+      res.se_log_mesh.push_back(std::abs(lsq.y[j] - coarse.y[j]) / (r.mesh_ratio - 1));
+      u.se_log[j] = std::hypot(u.se_log[j], res.se_log_mesh[j]);
+      u.interval[j] = {std::exp(lsq.y[j] - 1.96 * u.se_log[j]), std::exp(lsq.y[j] + 1.96 * u.se_log[j])};
+      if (u.flags[j].empty() && u.se_log[j] > max_se_log)
+        u.flags[j] = fmt::format("poorly determined: relative standard error {:.0f} %", 100 * u.se_log[j]);
+    }
+    mesh = &r.mesh;
+  }
   res.calibrated = with_parameters(r.start, r.parameters, lsq.y);
 
   // The fitted neutral state and every scan against it: the source scan, the
@@ -209,7 +239,7 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     all.push_back(&s);
   for (const auto& s : r.predict)
     all.push_back(&s);
-  const ScanEvaluation e = evaluate(r, res.calibrated, all, true, comm);
+  const ScanEvaluation e = evaluate(r, r.mesh, res.calibrated, all, true, comm);
   res.inverse = e.inverse;
   for (std::size_t t = 0; t < all.size(); ++t)
     (t <= r.fit.size() ? res.fitted : res.predicted)
@@ -242,6 +272,7 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
 
 nlohmann::json scan_calibration_json(const ScanCalibrationResult& r)
 {
+  auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
   nlohmann::json params = nlohmann::json::array();
   for (std::size_t j = 0; j < r.parameters.size(); ++j)
   {
@@ -256,6 +287,10 @@ nlohmann::json scan_calibration_json(const ScanCalibrationResult& r)
                       {"relative_se_percent", std::isfinite(u.se_log[j]) ? nlohmann::json(100 * u.se_log[j])
                                                                          : nlohmann::json()},
                       {"interval95", {u.interval[j][0], u.interval[j][1]}},
+                      {"se_log_noise", finite(r.se_log_noise[j])},
+                      {"se_log_mesh", j < r.se_log_mesh.size() ? finite(r.se_log_mesh[j]) : nlohmann::json()},
+                      {"value_coarse_mesh", j < r.coarse_value.size() ? nlohmann::json(r.coarse_value[j])
+                                                                       : nlohmann::json()},
                       {"flag", u.flags[j]}});
   }
   nlohmann::json corr = r.uncertainty.singular ? nlohmann::json() : nlohmann::json(r.uncertainty.correlation);
@@ -271,7 +306,12 @@ nlohmann::json scan_calibration_json(const ScanCalibrationResult& r)
     it.push_back({{"mismatch_rms_m", i.rms_mismatch}, {"mismatch_max_m", i.max_mismatch}});
   return {{"method", "neutral state by the inverse solve from the first scan; forward solves to the other scans' "
                      "postures; Levenberg-Marquardt on their points' normal distances / sigma in y = ln p; "
-                     "Gauss-Newton covariance (scaled by the reduced chi2 when above 1)"},
+                     "Gauss-Newton covariance (scaled by the reduced chi2 when above 1); se_log = hypot(se_log_noise, "
+                     "se_log_mesh), se_log_mesh = |ln p - ln p_coarse| / (mesh_ratio - 1) from the fit on a mesh "
+                     "mesh_ratio times coarser"},
+          {"mesh_ratio", r.mesh_ratio},
+          {"tetrahedra", r.tetrahedra},
+          {"coarse_tetrahedra", r.coarse_tetrahedra},
           {"parameters", params},
           {"correlation", corr},
           {"singular", r.uncertainty.singular},
@@ -319,10 +359,15 @@ std::string scan_calibration_table(const ScanCalibrationResult& r)
                               "{:.1f} s\n",
                               r.evaluations, r.iterations, r.stop_reason, r.chi2, r.reduced_chi2, r.seconds);
   for (std::size_t j = 0; j < r.parameters.size(); ++j)
+  {
     s += fmt::format("  {:<6} {:12.6g} {}  (start {:.6g}; SE {:.2f} %, 95 % interval [{:.6g}, {:.6g}]) {}\n",
                      r.parameters[j].name, r.value[j], r.parameters[j].unit, r.start[j],
                      100 * r.uncertainty.se_log[j], r.uncertainty.interval[j][0], r.uncertainty.interval[j][1],
                      r.uncertainty.flags[j]);
+    if (j < r.se_log_mesh.size())
+      s += fmt::format("         SE from the noise {:.2f} %, from the mesh {:.2f} % (coarser mesh: {:.6g} {})\n",
+                       100 * r.se_log_noise[j], 100 * r.se_log_mesh[j], r.coarse_value[j], r.parameters[j].unit);
+  }
   auto rows = [&](const char* what, const std::vector<ScanDistance>& v)
   {
     for (const auto& d : v)

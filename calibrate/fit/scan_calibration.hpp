@@ -53,6 +53,13 @@ struct ScanCalibrationRequest
   InverseOptions inverse;
   LsqOptions lsq;
   double chest_margin = 0.005; ///< points nearer the chest plane y = 0 are not used [m]
+  /// The discretisation error (as the diagnosis's mesh_error.cpp): the fit is
+  /// repeated on `coarse_mesh`, the first scan meshed `mesh_ratio` times
+  /// coarser, and SE_mesh(ln p) = |ln p - ln p_coarse| / (mesh_ratio - 1)
+  /// (first-order convergence) widens each interval: SE = hypot(SE_noise,
+  /// SE_mesh). mesh_ratio = 0: not estimated.
+  meshes::TaggedMesh coarse_mesh;
+  double mesh_ratio = 0;
 };
 
 /// Distances of one scan's points to its posture's simulated skin.
@@ -69,7 +76,10 @@ struct ScanCalibrationResult
 {
   std::vector<FitParameter> parameters;
   std::vector<double> start, value; ///< [unit]
-  Uncertainty uncertainty;
+  Uncertainty uncertainty;          ///< noise and, with mesh_ratio, the discretisation error
+  std::vector<double> se_log_noise, se_log_mesh, coarse_value; ///< the parts of se_log; the coarse fit
+  std::size_t tetrahedra = 0, coarse_tetrahedra = 0;
+  double mesh_ratio = 0;
   double chi2 = 0, reduced_chi2 = 0;
   std::size_t residuals = 0;
   int evaluations = 0, iterations = 0;

@@ -30,7 +30,7 @@ struct ScanCalibrateOptions
   ScanCalibrateOptions() { model.mesh.mesh_size = 0; }
   std::vector<std::string> scans, postures, predict, predict_postures, sets;
   std::string chest, units, fit = "mu", case_file, up = "0,0,1", lateral = "1,0,0";
-  double chest_margin = 0.005, min_sigma = 1e-4;
+  double chest_margin = 0.005, min_sigma = 1e-4, mesh_ratio = 1.5;
   int max_iterations = 12;
   scan::ScanModelOptions model;
   OutputOption out;
@@ -85,6 +85,8 @@ void check_options(ScanCalibrateOptions& o, const Config& start, std::vector<cal
   check_range(o.chest_margin, 0, 0.05, "--chest-margin", "m");
   check_range(o.min_sigma, 1e-5, 0.01, "--min-sigma", "m");
   check_range(o.max_iterations, 1, 50, "--max-iterations", "");
+  if (o.mesh_ratio != 0)
+    check_range(o.mesh_ratio, 1.2, 3, "--mesh-error-ratio", "(or 0: no discretisation error estimate)");
   fit = calibration::parse_fit(o.fit, start);
   for (const auto& p : fit)
   {
@@ -153,6 +155,10 @@ Command add_scan_calibrate_command(CLI::App& root)
       ->capture_default_str();
   app->add_option("--max-iterations", o->max_iterations, "Levenberg-Marquardt iterations, in [1, 50]")
       ->capture_default_str();
+  app->add_option("--mesh-error-ratio", o->mesh_ratio, "the fit is repeated on a mesh this many times coarser and "
+                                                       "the difference widens the intervals (discretisation "
+                                                       "error), in [1.2, 3]; 0: not estimated")
+      ->capture_default_str();
   add_output_option(app, o->out, "output folder (default results/scan-calibrate); replaced on success");
   return {app, [o]()
           {
@@ -174,8 +180,9 @@ Command add_scan_calibrate_command(CLI::App& root)
               files.insert(files.end(), o->predict.begin(), o->predict.end());
               const scan::ScanSeries s = scan::build_scan_series(
                   files, o->chest, o->model, generated::tag("base"), generated::tag("skin"),
-                  generated::tag("symmetry"));
+                  generated::tag("symmetry"), o->mesh_ratio);
               r.mesh = s.first.mesh.mesh;
+              r.coarse_mesh = s.coarse.mesh;
               r.nipple_node = nearest_node(r.mesh, s.first.mesh.nipple);
               r.source = scan_points(o->scans[0], o->postures[0], s.first_points, s.first.noise_rms, o->min_sigma);
               scans_json.push_back({{"file", o->scans[0]}, {"posture", o->postures[0]}, {"role", "meshed"},
@@ -243,6 +250,7 @@ Command add_scan_calibrate_command(CLI::App& root)
             r.start = start;
             r.parameters = fit;
             r.chest_margin = o->chest_margin;
+            r.mesh_ratio = o->mesh_ratio;
             r.lsq.max_iterations = o->max_iterations;
             r.lsq.fd_step = 0.02; // 2 % of p: well above the inverse's 1e-6 m tolerance in the distances
             r.lsq.xtol = 2e-3;

@@ -26,10 +26,14 @@ struct ScanSeries
   ScanModel first;              ///< the first scan, meshed (breast frame)
   std::vector<Vec3> first_points; ///< its skin points in its breast frame [m]
   std::vector<SeriesScan> others; ///< in the order given
+  ScanMesh coarse;                ///< with coarse_ratio > 0: the first scan meshed coarse_ratio times coarser
 };
 
 /// The series: `skins[0]` meshed, the others fitted and mapped. `chest` is
-/// required (it registers the scans).
+/// required (it registers the scans). With `coarse_ratio` > 0 the first
+/// scan's fit is also meshed at coarse_ratio times its mesh size (the
+/// discretisation error of a calibration).
 ScanSeries build_scan_series(const std::vector<std::filesystem::path>& skins, const std::filesystem::path& chest,
-                             const ScanModelOptions& o, int tag_base, int tag_skin, int tag_symmetry);
+                             const ScanModelOptions& o, int tag_base, int tag_skin, int tag_symmetry,
+                             double coarse_ratio = 0);
 } // namespace breastsim::scan
