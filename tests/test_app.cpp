@@ -111,8 +111,12 @@ TEST(AppProgress, SurgeryStagesFromTheLog)
   for (std::size_t i = 0; i < expected.size(); ++i)
     EXPECT_NEAR(seen[i], expected[i], 1e-12) << i;
   EXPECT_EQ(app::progress_from_log("surgery", 2, log).stage, "solving posture 'supine' (theta = 90 deg)");
-  EXPECT_NEAR(app::progress_from_log("calibrate", 10, "[1] eval    1  chi2 = 3\n[2] eval    2  chi2 = 2\n").fraction,
-              0.2, 1e-12);
+  // A calibration: its evaluations (the structured channel) over max_evals, at most 0.95.
+  const auto cal = app::calibration_progress(10, 2, "[1] calibrating [mu,c]\n[2] eval    2  chi2 = 2\n");
+  EXPECT_NEAR(cal.fraction, 0.2, 1e-12);
+  EXPECT_EQ(cal.stage, "eval    2  chi2 = 2");
+  EXPECT_NEAR(app::calibration_progress(10, 14, "").fraction, 0.95, 1e-12);
+  EXPECT_NEAR(app::calibration_progress(0, 0, "").fraction, 0, 1e-12);
 }
 
 TEST(AppPoleVolumes, QuarterSphereHalfBelowTheEquator)

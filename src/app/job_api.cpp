@@ -1,5 +1,7 @@
 #include "job_api.hpp"
+#include "errors.hpp"
 #include "http_reply.hpp"
+#include "job_evaluations.hpp"
 #include "job_request.hpp"
 #include "result_archive.hpp"
 #include <fstream>
@@ -85,9 +87,27 @@ void add_job_routes(httplib::Server& server, JobStore& store, JobQueue& queue)
       jobs.push_back(public_record(r));
     reply_json(res, 200, {{"jobs", jobs}});
   });
+  // A calibration's record carries its evaluations (those after `since`).
   server.Get(R"(/api/jobs/([0-9a-f]{16}))", [&](const httplib::Request& req, httplib::Response& res) {
-    const auto r = store.get(req.matches[1]);
-    r ? reply_json(res, 200, public_record(*r)) : reply_error(res, 404, "no such job");
+    const std::string id = req.matches[1];
+    const auto r = store.get(id);
+    if (!r)
+      return reply_error(res, 404, "no such job");
+    auto j = public_record(*r);
+    if (r->kind == "calibrate")
+    {
+      long since = 0;
+      try
+      {
+        since = parse_since(req.has_param("since") ? req.get_param_value("since") : "");
+      }
+      catch (const InputError& e)
+      {
+        return reply_error(res, 400, e.what());
+      }
+      j["evaluations"] = read_evaluations(store.folder(id), since);
+    }
+    reply_json(res, 200, j);
   });
   server.Post(R"(/api/jobs/([0-9a-f]{16})/cancel)", [&](const httplib::Request& req, httplib::Response& res) {
     const std::string id = req.matches[1];

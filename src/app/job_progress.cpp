@@ -15,24 +15,6 @@ std::string message_of(const std::string& line)
   return p == std::string::npos ? line : line.substr(p + 2);
 }
 
-/// Evaluations of a calibration's misfit so far over the most it may take.
-JobProgress calibration_progress(std::size_t max_evals, const std::string& log)
-{
-  JobProgress p;
-  std::istringstream in(log);
-  std::string line;
-  double evals = 0;
-  while (std::getline(in, line))
-    if (!line.empty())
-    {
-      p.stage = message_of(line);
-      if (p.stage.rfind("eval ", 0) == 0)
-        evals += 1;
-    }
-  p.fraction = std::min(0.95, evals / static_cast<double>(std::max<std::size_t>(max_evals, 1)));
-  return p;
-}
-
 /// Combinations of a sweep started ("sweep: <label> (group ...)") over their number.
 JobProgress sweep_progress(std::size_t combinations, const std::string& log)
 {
@@ -52,10 +34,20 @@ JobProgress sweep_progress(std::size_t combinations, const std::string& log)
 }
 } // namespace
 
+JobProgress calibration_progress(std::size_t max_evals, std::size_t evaluations, const std::string& log)
+{
+  JobProgress p;
+  std::istringstream in(log);
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty())
+      p.stage = message_of(line);
+  p.fraction = std::min(0.95, static_cast<double>(evaluations) / static_cast<double>(std::max<std::size_t>(max_evals, 1)));
+  return p;
+}
+
 JobProgress progress_from_log(const std::string& kind, std::size_t steps, const std::string& log)
 {
-  if (kind == "calibrate")
-    return calibration_progress(steps, log);
   if (kind == "sweep")
     return sweep_progress(steps, log);
   const std::size_t postures = steps;

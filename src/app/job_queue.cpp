@@ -1,6 +1,7 @@
 #include "job_queue.hpp"
 #include "case_request.hpp"
 #include "child_process.hpp"
+#include "job_evaluations.hpp"
 #include "job_progress.hpp"
 #include "log.hpp"
 #include "output_target.hpp"
@@ -185,10 +186,14 @@ void JobQueue::refresh_progress(const std::string& id, const JobRecord& r)
 {
   try
   {
-    const std::size_t steps = r.kind == "calibrate" ? r.options.value("max_evals", 1)
-                              : r.kind == "sweep"   ? sweep_size(r.options.at("vary"))
-                                                    : posture_count(case_from_overrides(r.overrides));
-    const auto p = progress_from_log(r.kind, steps, read_text(_store.folder(id) / "log.txt"));
+    const fs::path folder = _store.folder(id);
+    const std::string log = read_text(folder / "log.txt");
+    const auto p = r.kind == "calibrate"
+                       ? calibration_progress(r.options.value("max_evals", 1), read_evaluations(folder).size(), log)
+                       : progress_from_log(r.kind,
+                                           r.kind == "sweep" ? sweep_size(r.options.at("vary"))
+                                                             : posture_count(case_from_overrides(r.overrides)),
+                                           log);
     _store.update(id, [&](JobRecord& rec) {
       rec.progress = p.fraction;
       rec.stage = p.stage.empty() ? rec.stage : p.stage;

@@ -3,6 +3,7 @@
 #include "case_request.hpp"
 #include "data_folder.hpp"
 #include "errors.hpp"
+#include "job_evaluations.hpp"
 #include "job_id.hpp"
 #include "job_request.hpp"
 #include "simulate.hpp"
@@ -10,6 +11,8 @@
 #include "sweep_request.hpp"
 #include <csignal>
 #include <fstream>
+#include <mutex>
+#include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/spdlog.h>
 #include <sys/prctl.h>
@@ -28,11 +31,34 @@ void write_outcome(const fs::path& folder, const nlohmann::json& outcome)
   fs::rename(folder / "outcome.json.tmp", folder / "outcome.json");
 }
 
-/// The library's log lines (info and above) into log.txt, flushed at once.
+/// The progress channel of a calibration: each evaluation the library
+/// reports becomes a line of the job folder's evaluations.jsonl.
+class EvaluationSink : public spdlog::sinks::base_sink<std::mutex>
+{
+public:
+  explicit EvaluationSink(fs::path folder) : _folder(std::move(folder)) {}
+
+protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override
+  {
+    if (msg.payload.size() < 5 || std::string_view(msg.payload.data(), 5) != "eval ")
+      return;
+    if (const auto e = evaluation_from_message(std::string(msg.payload.data(), msg.payload.size())))
+      append_evaluation(_folder, *e);
+  }
+  void flush_() override {}
+
+private:
+  fs::path _folder;
+};
+
+/// The library's log lines (info and above) into log.txt, flushed at once,
+/// and its evaluations into evaluations.jsonl.
 void log_into(const fs::path& file)
 {
-  auto logger = std::make_shared<spdlog::logger>(
-      "job", std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string()));
+  std::vector<spdlog::sink_ptr> sinks = {std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string()),
+                                         std::make_shared<EvaluationSink>(file.parent_path())};
+  auto logger = std::make_shared<spdlog::logger>("job", sinks.begin(), sinks.end());
   logger->set_pattern("[%H:%M:%S] %v");
   logger->flush_on(spdlog::level::info);
   spdlog::set_default_logger(logger);
@@ -54,6 +80,11 @@ void calibrate(const fs::path& folder, const nlohmann::json& request, const Conf
   rules.inputs.push_back(data);
   const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
   calibration::run_calibration(job, target, folder / "checkpoint.json", MPI_COMM_WORLD);
+  // The report's history replaces what was read from the progress messages.
+  std::ifstream report(folder / "result" / "report.json");
+  const auto rep = nlohmann::json::parse(report, nullptr, false);
+  if (rep.is_object() && rep.contains("history"))
+    write_evaluations(folder, evaluations_from_history(rep["history"]));
 }
 
 void run(const fs::path& folder)

@@ -22,7 +22,7 @@ struct Entry
   const char* mime;
 };
 
-constexpr std::array<Entry, 9> table = {{
+constexpr std::array<Entry, 10> table = {{
     {"/", false, "app.html", "text/html; charset=utf-8"},
     {"/index.html", false, "app.html", "text/html; charset=utf-8"},
     {"/app.js", false, "app.js", "text/javascript; charset=utf-8"},
@@ -30,6 +30,7 @@ constexpr std::array<Entry, 9> table = {{
     {"/view3d.js", false, "view3d.js", "text/javascript; charset=utf-8"},
     {"/report.js", false, "report.js", "text/javascript; charset=utf-8"},
     {"/sweep.js", false, "sweep.js", "text/javascript; charset=utf-8"},
+    {"/misfit_plot.js", false, "misfit_plot.js", "text/javascript; charset=utf-8"},
     {"/three/three.module.js", true, "build/three.module.js", "text/javascript; charset=utf-8"},
     {"/three/OrbitControls.js", true, "examples/jsm/controls/OrbitControls.js",
      "text/javascript; charset=utf-8"},

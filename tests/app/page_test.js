@@ -7,6 +7,7 @@
 // reattaches) -> the numbers on the page equal the API's and the CLI's ->
 // the report (every posture's row and before | after picture) and its PDF
 // -> a 3 x 3 sweep -> export the case TOML. No console errors.
+// The calibration's misfit plot (live, then final) against the API's evaluations.
 // Screenshots of each step into SHOT_DIR; the first view (< 1 s, median of 5
 // loads) and the slider redraw (< 100 ms, median of 9 moves) from the page's
 // performance entries, into SHOT_DIR/timings.json.
@@ -125,6 +126,26 @@ async function smallSweep(page, job) {
   await page.screenshot({ path: path.join(shots, "5-sweep.png") });
 }
 
+// The calibration's misfit plot: one point per evaluation of the API, at the
+// API's chi2, on a log scale; it was drawn live before the job ended.
+async function misfitPlot(page, cal) {
+  const ev = cal.evaluations;
+  const points = await page.$$eval("#misfit-svg circle", (es) =>
+    es.map((e) => ({ n: Number(e.dataset.n), chi2: Number(e.dataset.chi2), cy: Number(e.getAttribute("cy")) })));
+  check(ev.length === cal.summary.evaluations && points.length === ev.length &&
+        points.every((p, i) => p.n === ev[i].n && p.chi2 === ev[i].chi2),
+        `the misfit plot has the job's ${ev.length} evaluations at the API's chi2 (${+ev[0].chi2.toPrecision(4)} -> ` +
+        `${+Math.min(...ev.map((e) => e.chi2)).toPrecision(4)})`);
+  // Log scale: the height is linear in log10(chi2) (to the 0.1 px the SVG is written with).
+  const lo = points.reduce((a, b) => (b.chi2 < a.chi2 ? b : a)), hi = points.reduce((a, b) => (b.chi2 > a.chi2 ? b : a));
+  const slope = (hi.cy - lo.cy) / (Math.log10(hi.chi2) - Math.log10(lo.chi2));
+  check(slope < 0 && points.every((p) => Math.abs(lo.cy + slope * (Math.log10(p.chi2) - Math.log10(lo.chi2)) - p.cy) < 0.15),
+        "the plot's heights are on a log scale of chi2");
+  const plotted = await page.evaluate(() => window.breastsimApp.plotted);
+  check(plotted.final && plotted.live > 0 && plotted.live <= ev.length,
+        `the plot was drawn live (${plotted.live} points before the end), then redrawn from the final list`);
+}
+
 async function walk(page, errors) {
   const firstView = await firstViews(page, 5);
   check(errors.length === 0, "no console errors on load" + (errors.length ? ": " + errors : ""));
@@ -151,9 +172,15 @@ async function walk(page, errors) {
   await page.fill("#cal-evals", "12");
   await page.waitForFunction(() => !document.querySelector("#cal-run").disabled);
   await page.click("#cal-run");
+  // The misfit plot grows while the job runs (its evaluations from the progress channel).
+  await page.waitForFunction(() => { const p = window.breastsimApp.plotted; return p && !p.final && p.points > 0; },
+                             null, { timeout: 300000, polling: 50 });
+  await page.$eval("#calibrate", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, "2-calibrating.png") });
   await page.waitForSelector("#cal-use", { timeout: 300000 });
   const cal = await page.evaluate(async () =>
     (await fetch("/api/jobs/" + localStorage.getItem("breastsim.job.calibrate"))).json());
+  await misfitPlot(page, cal);
   const mu = cal.summary.parameters.find((p) => p.name === "mu");
   const shownMu = await page.textContent('[data-key="fitted-mu"]');
   check(shownMu === String(+mu.fitted.toPrecision(4)) && /identifiab|determined|correlated/.test(await page.textContent("#cal-result")),

@@ -3,7 +3,8 @@
 # refused options and data folders; hostile requests (malformed JSON, unknown
 # keys, out-of-range values, oversized bodies, path traversal, CORS, foreign
 # Host); the planning checks; a surgery job whose numbers equal the CLI's
-# `breastsim surgery` on the same keys; a calibration equal to `calibrate`'s;
+# `breastsim surgery` on the same keys; a calibration equal to `calibrate`'s,
+# its evaluations (the progress channel, live and final) equal to its report's;
 # a failing solve and a killed job process (the server stays up); cancelling a queued and a running job
 # (nothing of them left); a restart that finds the finished job again; two
 # jobs at once with --workers 2.

@@ -153,6 +153,7 @@ def calibrate(api, measurements, out):
     s, r = api.json("POST", "/api/jobs", {**base, "fit": "mu,rho"})
     check(s == 400 and "rho" in r["error"], f"an unidentifiable combination is refused ({r['error'][:60]}...)")
     s, r = api.json("POST", "/api/jobs", {**base, "fit": "mu,c", "max_evals": 12})
+    live = follow_evaluations(api, r["id"])
     rec = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
     check(rec["state"] == "done", f"calibration job done ({rec['state']}: {rec['error']})")
     p = rec["summary"]["parameters"]
@@ -160,7 +161,49 @@ def calibrate(api, measurements, out):
           and all(q["identifiability"] for q in p), "fitted parameters with 95 % intervals and identifiability in words")
     s, _, data = api.raw("GET", f"/api/jobs/{r['id']}/files/report.json")
     check(s == 200, "report.json served")
-    json.dump({"record": rec, "report": json.loads(data)}, open(out, "w"))
+    report = json.loads(data)
+    evaluations_channel(api, r["id"], rec, report, live)
+    json.dump({"record": rec, "report": report}, open(out, "w"))
+
+
+def follow_evaluations(api, job_id):
+    """The evaluations of a running calibration as the page reads them (?since= the last one seen)."""
+    live, states = [], set()
+    end = time.time() + 600
+    while time.time() < end:
+        s, rec = api.json("GET", f"/api/jobs/{job_id}?since={live[-1]['n'] if live else 0}")
+        assert s == 200, (s, rec)
+        states.add(rec["state"])
+        if rec["state"] == "running":
+            live += rec["evaluations"]
+        elif rec["state"] != "queued":
+            return live
+        time.sleep(0.2)
+    raise AssertionError("calibration did not end")
+
+
+def evaluations_channel(api, job_id, rec, report, live):
+    """The API's evaluations of a finished calibration: the report's history, exactly; those read
+    while it ran: the same evaluations to the 6 digits of the library's progress line."""
+    s, full = api.json("GET", f"/api/jobs/{job_id}")
+    ev, history = full["evaluations"], report["history"]
+    check(s == 200 and len(ev) == report["evaluations"] == rec["summary"]["evaluations"] == len(history) > 0 and
+          [e["n"] for e in ev] == list(range(1, len(ev) + 1)) and
+          all(e["chi2"] == h["chi2"] and e["params"] == h["parameters"] and e["stage"] == h["stage"]
+              for e, h in zip(ev, history)),
+          f"the calibration's evaluations from the API: {len(ev)} = the report's, chi2 and parameters equal "
+          f"to its history ({ev[0]['chi2']:.6g} -> {min(e['chi2'] for e in ev):.6g})")
+    check(len(live) > 0 and [e["n"] for e in live] == list(range(1, len(live) + 1)) and
+          all(abs(e["chi2"] / ev[e["n"] - 1]["chi2"] - 1) < 1e-5 and
+              all(abs(v / ev[e["n"] - 1]["params"][k] - 1) < 1e-4 for k, v in e["params"].items())
+              for e in live),
+          f"while it ran: {len(live)} evaluations in order (?since=), chi2 within 1e-5 of the report's")
+    s, after = api.json("GET", f"/api/jobs/{job_id}?since=5")
+    check(s == 200 and [e["n"] for e in after["evaluations"]] == list(range(6, len(ev) + 1)),
+          "?since=5: the evaluations after the 5th")
+    for bad in ("-1", "x", "1e3", "%2e%2e", "99999999999"):
+        s, err = api.json("GET", f"/api/jobs/{job_id}?since={bad}")
+        check(s == 400 and "since" in err["error"], f"?since={bad} -> 400 ({err['error']})")
 
 
 def failures(api):

@@ -5,9 +5,11 @@
 import { View3D, POINT_COLOURS } from "/view3d.js";
 import { reportPictures, usesFit } from "/report.js";
 import { SWEEP_KEYS, sweepPictures, sweepRequest, sweepTable } from "/sweep.js";
+import { evaluationStage, misfitCaption, misfitPlotSvg } from "/misfit_plot.js";
 
 const $ = (s) => document.querySelector(s);
-const state = { keys: {}, job: null, incisionOk: false, measurements: null, surfaces: {} };
+const state = { keys: {}, job: null, incisionOk: false, measurements: null, surfaces: {},
+                evaluations: { id: null, list: [] } };
 const app = (window.breastsimApp = { ready: false, lastRedrawMs: null, redraws: 0, reports: 0, sweeps: 0, errors: [] });
 let view;
 
@@ -320,15 +322,39 @@ function attach(kind, id, fromPage) {
   poll(kind);
 }
 
+// The calibration's evaluations so far (the job's progress channel): those
+// after the last one shown while it runs, all of them (the report's exact
+// history) once it has ended; the misfit plot redrawn from them.
+function evaluationCursor(id) {
+  const e = state.evaluations;
+  return e.id === id && e.list.length ? e.list[e.list.length - 1].n : 0;
+}
+
+async function followEvaluations(job) {
+  const e = state.evaluations, final = job.state !== "queued" && job.state !== "running";
+  const cursor = evaluationCursor(job.id);
+  if (e.id !== job.id) { e.id = job.id; e.list = []; }
+  if (final && cursor > 0) {
+    const all = await api("GET", `/api/jobs/${job.id}`);
+    e.list = all.status === 200 ? all.json.evaluations || [] : e.list;
+  } else e.list = e.list.concat((job.evaluations || []).filter((x) => x.n > cursor));
+  $("#cal-plot").innerHTML = misfitPlotSvg(e.list, job.options.max_evals, final) +
+    `<p class="hint" id="cal-plot-caption">${misfitCaption(e.list, final)}</p>`;
+  app.plotted = { id: job.id, points: e.list.length, final,
+                  live: final ? (app.plotted && app.plotted.id === job.id ? app.plotted.live : 0) : e.list.length };
+}
+
 async function poll(kind) {
   const id = jobs[kind], panel = PANELS[kind];
   if (!id) return;
-  const r = await api("GET", `/api/jobs/${id}`);
+  const r = await api("GET", `/api/jobs/${id}` + (kind === "calibrate" ? `?since=${evaluationCursor(id)}` : ""));
   if (r.status !== 200) { localStorage.removeItem("breastsim.job." + kind); jobs[kind] = null; return; }
   const job = r.json;
+  if (kind === "calibrate") await followEvaluations(job);
   if (kind === "surgery" && !state.shownCase) { applyOverrides(job.overrides, true); state.shownCase = true; }
   $(panel.progress).value = job.progress;
-  $(panel.stage).textContent = `${job.state}: ${job.stage}`;
+  const fromChannel = kind === "calibrate" && job.state === "running" && evaluationStage(state.evaluations.list, job.options.max_evals);
+  $(panel.stage).textContent = `${job.state}: ${fromChannel || job.stage}`;
   if (job.state === "queued" || job.state === "running") return setTimeout(() => poll(kind), 400);
   jobs[kind] = null;
   $(panel.cancel).disabled = true;
