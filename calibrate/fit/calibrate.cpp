@@ -49,10 +49,12 @@ void record_evaluations(Run& run)
   run.f.on_evaluation(
       [&run](const Evaluation& e)
       {
-        nlohmann::json h = {{"evaluation", e.index}, {"chi2", e.chi2}, {"stage", run.stage}};
+        nlohmann::json h = {{"evaluation", e.index}, {"chi2", e.chi2}, {"stage", run.stage}, {"best", e.best}};
         for (std::size_t j = 0; j < run.fit.size(); ++j)
           h["parameters"][run.fit[j].name] = std::exp(e.y[j]);
         run.history.push_back(h);
+        if (run.o.on_evaluation)
+          run.o.on_evaluation(h);
         log::info("eval {:>4}  chi2 = {:<12.6g} {}{}", e.index, e.chi2, parameter_text(run.fit, e.y),
                   e.best ? "  *" : "");
         if (!run.o.checkpoint.empty())

@@ -6,6 +6,7 @@
 #include "measurements.hpp"
 #include "optimizer.hpp"
 #include <filesystem>
+#include <functional>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,10 @@ struct CalibrateOptions
   /// MPI ranks per forward solve: the Jacobian's columns are solved by
   /// groups of this many ranks side by side (0: all ranks on each solve).
   int ranks_per_case = 0;
+  /// Called after every evaluation with its history entry ({"evaluation",
+  /// "chi2", "stage", "parameters", "best"}, as in report.json), e.g. to
+  /// stream the progress of a job.
+  std::function<void(const nlohmann::json&)> on_evaluation;
 };
 
 struct CalibrationResult

@@ -42,6 +42,7 @@ std::string fit_measurements(const CalibrateJob& job, const OutputTarget& out,
   co.morph = !r.remesh;
   co.correction_mesh_size = r.correction_mesh_size;
   co.ranks_per_case = r.ranks_per_case;
+  co.on_evaluation = job.on_evaluation;
   log::info("calibrating [{}] with {} against {} measurements in {} postures", r.fit, r.algorithm,
             job.data.measurements.items.size(), job.data.measurements.postures.size());
   const auto res = calibrate(job.start, job.data.measurements, job.fit, co, comm);
@@ -56,7 +57,7 @@ std::string fit_measurements(const CalibrateJob& job, const OutputTarget& out,
 
 CalibrateJob prepare_calibration(const Config& start, const CalibrateRequest& r)
 {
-  CalibrateJob job{start, r, read_calibration_data(r.data_file), {}};
+  CalibrateJob job{start, r, read_calibration_data(r.data_file), {}, {}};
   if (job.data.recording)
     return job; // the diagnosis parses --fit
   job.fit = parse_fit(r.fit, start);

@@ -8,6 +8,8 @@
 #include "fit_parameters.hpp"
 #include "output_target.hpp"
 #include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <mpi.h>
 #include <string>
 #include <vector>
@@ -20,6 +22,9 @@ struct CalibrateJob
   CalibrateRequest request;
   CalibrationData data;
   std::vector<FitParameter> fit; ///< point measurements: the parsed --fit
+  /// Point measurements: called after every evaluation with its history
+  /// entry (CalibrateOptions::on_evaluation).
+  std::function<void(const nlohmann::json&)> on_evaluation;
 
   /// Point measurements keep a checkpoint (--checkpoint, --resume); a recording's fit does not.
   bool keeps_checkpoint() const { return !data.recording.has_value(); }

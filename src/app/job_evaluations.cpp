@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 namespace breastsim::app
@@ -11,60 +10,21 @@ namespace breastsim::app
 namespace fs = std::filesystem;
 namespace
 {
-/// A number of the library's text ("350.4", "1.48e+05", "inf", "nan"), or nullopt.
-std::optional<double> number_of(const std::string& text)
+nlohmann::json finite_or_null(const nlohmann::json& v)
 {
-  if (text.empty())
-    return std::nullopt;
-  std::istringstream in(text);
-  in.imbue(std::locale::classic());
-  double v = 0;
-  if (text == "inf" || text == "-inf" || text == "nan" || text == "-nan")
-    return std::nan("");
-  in >> v;
-  if (in.fail() || !in.eof())
-    return std::nullopt;
-  return v;
+  return v.is_number() && std::isfinite(v.get<double>()) ? v : nlohmann::json();
 }
-
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 } // namespace
-
-std::optional<nlohmann::json> evaluation_from_message(const std::string& message)
-{
-  // calibrate.cpp: "eval {:>4}  chi2 = {:<12.6g} {}{}" with the parameters
-  // "name = {:.5g} unit" joined by ", " and "  *" for the best point.
-  static const std::regex line(R"(^eval +([0-9]{1,9})  chi2 = (\S+) +(.*?)( +\*)?$)");
-  static const std::regex param(R"(([A-Za-z_][A-Za-z0-9_]*) = (\S+?)(?= |,|$))");
-  std::smatch m;
-  if (!std::regex_match(message, m, line))
-    return std::nullopt;
-  const auto chi2 = number_of(m[2].str());
-  if (!chi2)
-    return std::nullopt;
-  nlohmann::json params = nlohmann::json::object();
-  const std::string text = m[3].str();
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), param); it != std::sregex_iterator(); ++it)
-  {
-    const auto v = number_of((*it)[2].str());
-    if (!v)
-      return std::nullopt;
-    params[(*it)[1].str()] = finite_or_null(*v);
-  }
-  return nlohmann::json{{"n", std::stol(m[1].str())},
-                        {"chi2", finite_or_null(*chi2)},
-                        {"params", params},
-                        {"best", m[4].matched}};
-}
 
 nlohmann::json evaluations_from_history(const nlohmann::json& history)
 {
   auto out = nlohmann::json::array();
   for (const auto& h : history)
     out.push_back({{"n", h.at("evaluation")},
-                   {"chi2", h.at("chi2")},
+                   {"chi2", finite_or_null(h.at("chi2"))},
                    {"params", h.value("parameters", nlohmann::json::object())},
-                   {"stage", h.value("stage", "")}});
+                   {"stage", h.value("stage", "")},
+                   {"best", h.value("best", false)}});
   return out;
 }
 

@@ -1,19 +1,13 @@
 #pragma once
 // The structured progress channel of a calibration job: every evaluation of
-// the misfit as one JSON line {"n", "chi2", "params": {name: value}, "best"}
-// in DATA/jobs/<id>/evaluations.jsonl, appended by the job process while it
-// runs and, when the calibration has ended, rewritten from report.json's
-// history (exact values, with each evaluation's "stage"). The API returns
+// the misfit as one JSON line {"n", "chi2", "params": {name: value},
+// "stage", "best"} in DATA/jobs/<id>/evaluations.jsonl, appended by the job
+// process as the library makes it (CalibrateOptions::on_evaluation: the
+// history entry of report.json) and, when the calibration has ended,
+// rewritten from report.json's history (the same entries). The API returns
 // them with the job's record (GET /api/jobs/<id>?since=N: those after N).
-//
-// calibrate() reports an evaluation only through its progress line (its
-// Objective's callback is internal to it), so while the job runs the entries
-// are read from that one message of the library, in the job process, as it
-// is logged (chi2 to the 6 significant digits, the parameters to the 5 of
-// the line); the report's history then replaces them.
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 
 namespace breastsim::app
@@ -21,14 +15,9 @@ namespace breastsim::app
 /// The file of a job folder.
 inline const char* evaluations_file = "evaluations.jsonl";
 
-/// One evaluation from the library's progress message
-/// "eval    3  chi2 = 12.3456      mu = 350.4 Pa, c = 1.48e+05 Pa/m  *"
-/// (the '*' marks the best point so far): {"n", "chi2", "params", "best"};
-/// nullopt for any other message. A chi2 that is not finite becomes null.
-std::optional<nlohmann::json> evaluation_from_message(const std::string& message);
-
 /// The entries of a calibration report's "history" ({"evaluation", "chi2",
-/// "stage", "parameters"}): {"n", "chi2", "params", "stage"}.
+/// "stage", "parameters", "best"}): {"n", "chi2", "params", "stage", "best"};
+/// a chi2 that is not finite becomes null.
 nlohmann::json evaluations_from_history(const nlohmann::json& history);
 
 /// The entries of an evaluations.jsonl text whose n exceeds `since`, in

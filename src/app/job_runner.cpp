@@ -31,34 +31,11 @@ void write_outcome(const fs::path& folder, const nlohmann::json& outcome)
   fs::rename(folder / "outcome.json.tmp", folder / "outcome.json");
 }
 
-/// The progress channel of a calibration: each evaluation the library
-/// reports becomes a line of the job folder's evaluations.jsonl.
-class EvaluationSink : public spdlog::sinks::base_sink<std::mutex>
-{
-public:
-  explicit EvaluationSink(fs::path folder) : _folder(std::move(folder)) {}
-
-protected:
-  void sink_it_(const spdlog::details::log_msg& msg) override
-  {
-    if (msg.payload.size() < 5 || std::string_view(msg.payload.data(), 5) != "eval ")
-      return;
-    if (const auto e = evaluation_from_message(std::string(msg.payload.data(), msg.payload.size())))
-      append_evaluation(_folder, *e);
-  }
-  void flush_() override {}
-
-private:
-  fs::path _folder;
-};
-
-/// The library's log lines (info and above) into log.txt, flushed at once,
-/// and its evaluations into evaluations.jsonl.
+/// The library's log lines (info and above) into log.txt, flushed at once.
 void log_into(const fs::path& file)
 {
-  std::vector<spdlog::sink_ptr> sinks = {std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string()),
-                                         std::make_shared<EvaluationSink>(file.parent_path())};
-  auto logger = std::make_shared<spdlog::logger>("job", sinks.begin(), sinks.end());
+  auto logger = std::make_shared<spdlog::logger>(
+      "job", std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string()));
   logger->set_pattern("[%H:%M:%S] %v");
   logger->flush_on(spdlog::level::info);
   spdlog::set_default_logger(logger);
@@ -76,11 +53,14 @@ void calibrate(const fs::path& folder, const nlohmann::json& request, const Conf
   }
   const auto r = calibrate_request(request, data);
   calibration::check_calibrate_request(r, c);
-  const auto job = calibration::prepare_calibration(c, r);
+  auto job = calibration::prepare_calibration(c, r);
+  // The progress channel: each evaluation's history entry, as it is made.
+  job.on_evaluation = [&folder](const nlohmann::json& h)
+  { append_evaluation(folder, evaluations_from_history(nlohmann::json::array({h})).at(0)); };
   rules.inputs.push_back(data);
   const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
   calibration::run_calibration(job, target, folder / "checkpoint.json", MPI_COMM_WORLD);
-  // The report's history replaces what was read from the progress messages.
+  // The report's history (the same entries) is the final list.
   std::ifstream report(folder / "result" / "report.json");
   const auto rep = nlohmann::json::parse(report, nullptr, false);
   if (rep.is_object() && rep.contains("history"))
