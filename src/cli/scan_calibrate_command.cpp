@@ -239,6 +239,7 @@ Command add_scan_calibrate_command(CLI::App& root)
             for (auto& s : r.predict)
               bcast_points(s);
 
+            r.mesh.order = r.coarse_mesh.order = static_cast<int>(numbers[1]); // every rank: to_dolfinx's order
             start.set("geometry.mesh_size", numbers[0]);
             start.set("geometry.order", std::int64_t(numbers[1]));
             start.set("geometry.R", numbers[2]);
