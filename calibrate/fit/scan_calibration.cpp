@@ -18,6 +18,7 @@
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <fmt/format.h>
+#include <utility>
 
 namespace breastsim::calibration
 {
@@ -156,8 +157,12 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
   };
   int evaluation = 0;
   const meshes::TaggedMesh* mesh = &r.mesh;
+  std::vector<double> y_start = y0;  // where the current fit starts: a failed solve there is an error
+  std::vector<double> r_start;       // its residuals, when already known (the start's report)
   ResidualFunction f = [&](const std::vector<double>& y) -> std::vector<double>
   {
+    if (y == y_start && !r_start.empty())
+      return std::exchange(r_start, {});
     const Config c = with_parameters(r.start, r.parameters, y);
     std::string ps;
     for (std::size_t j = 0; j < y.size(); ++j)
@@ -175,7 +180,7 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     }
     catch (const SolveError& err)
     {
-      if (evaluation == 0)
+      if (y == y_start)
         throw;
       // A trial step the material cannot hold: a large misfit rejects the step.
       log::warn("scan calibration, evaluation {}: {}: {} (step rejected)", ++evaluation, ps, err.what());
@@ -186,13 +191,15 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     const ScanEvaluation e0 = evaluate(r, r.mesh, r.start, fit_targets, false, comm);
     for (std::size_t t = 0; t < r.fit.size(); ++t)
       res.at_start.push_back(distance_summary(r.fit[t], e0.distances[t], r.chest_margin));
+    r_start = residuals(e0.distances);
+    ++evaluation;
   }
   const LsqResult lsq = levenberg_marquardt(f, y0, lo, hi, r.lsq);
   res.residuals = lsq.r.size();
   res.chi2 = lsq.chi2;
   const double dof = std::max<double>(1, double(lsq.r.size()) - double(y0.size()));
   res.reduced_chi2 = lsq.chi2 / dof;
-  res.evaluations = lsq.evaluations + 1;
+  res.evaluations = lsq.evaluations;
   res.iterations = lsq.iterations;
   res.stop_reason = lsq.stop_reason;
   res.uncertainty = gauss_newton_uncertainty(lsq.J, lsq.y, names, std::max(1.0, res.reduced_chi2));
@@ -216,6 +223,7 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     log::info("scan calibration: the fit again on a mesh {:g} times coarser ({} tetrahedra), for its "
               "discretisation error", r.mesh_ratio, res.coarse_tetrahedra);
     mesh = &r.coarse_mesh;
+    y_start = lsq.y;
     const LsqResult coarse = levenberg_marquardt(f, lsq.y, lo, hi, r.lsq);
     res.evaluations += coarse.evaluations;
     auto& u = res.uncertainty;
