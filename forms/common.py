@@ -24,9 +24,13 @@ TAGS.update({"suture_a": 6, "suture_b": 7})
 
 # Explicit quadrature degrees (the automatic estimate explodes for the
 # membrane's inv/ln/sqrt). P1: F is cell-wise constant. P2: F is linear;
-# degree 2 is the 4-point rule used for 10-node tetrahedra.
+# degree 4 is basix's 14-point rule, whose points include the six edge
+# midpoints: the energy's log J barrier then acts there too, and the
+# inversion check (geometry_forms.py) uses the same points. With the
+# 4-point rule (degree 2) P2 cells folded at nodes the energy did not see
+# and the suture closure stopped (docs/VERIFICATION.md, "P2 suture closure").
 QDEG = {1: {"volume": 1, "volume_load": 2, "surface": 1, "surface_quad": 2},
-        2: {"volume": 2, "volume_load": 3, "surface": 2, "surface_quad": 4}}[DEGREE]
+        2: {"volume": 4, "volume_load": 4, "surface": 2, "surface_quad": 4}}[DEGREE]
 
 cell = tetrahedron
 coord_element = VectorElement("Lagrange", cell, DEGREE)

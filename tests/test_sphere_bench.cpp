@@ -33,11 +33,11 @@ TEST(SphereBench, ReferenceIsConvergedAndReducesToLame)
 
 // The finite-element octant (P2, curved 10-node cells) against the reference.
 // Mesh study (docs/VERIFICATION.md; relative errors of the mean radial
-// displacement, inner / outer surface): mesh_size 8 mm (399 cells) -0.43 % /
-// -0.53 %, 4 mm (682 cells) -0.16 % / -0.20 %, 2 mm (2598 cells) -0.035 % /
-// -0.042 %: the FE solution converges to the reference from below (a coarse
-// mesh is too stiff). Asserted on the two coarse meshes (~6 s): the error
-// shrinks and is below 0.25 % at 4 mm.
+// displacement, inner / outer surface, tissue integrated with the 14-point
+// rule of forms/common.py): mesh_size 8 mm (399 cells) -0.60 % / -0.72 %,
+// 4 mm (682 cells) -0.23 % / -0.28 %: the FE solution converges to the
+// reference from below (a coarse mesh is too stiff). Asserted on the two
+// coarse meshes (~6 s): the error shrinks and is below 0.3 % at 4 mm.
 TEST(SphereBench, P2OctantMatchesReference)
 {
   const SphereBenchSpec s;
@@ -55,6 +55,6 @@ TEST(SphereBench, P2OctantMatchesReference)
     EXPECT_LT(std::abs(e_out), previous_out);
     previous_in = std::abs(e_in), previous_out = std::abs(e_out);
   }
-  EXPECT_LT(previous_in, 2.5e-3);
-  EXPECT_LT(previous_out, 2.5e-3);
+  EXPECT_LT(previous_in, 3e-3);
+  EXPECT_LT(previous_out, 3e-3);
 }

@@ -44,12 +44,12 @@ TEST(FoldSite, FindsTheCellAroundAnInvertedCorner)
     Config c = fixtures::coarse_case(order, 0.014);
     auto m = fixtures::make_incised_model(c);
     const FoldSite rest = fold_site(*m);
-    EXPECT_NEAR(rest.det_node, 1.0, 1e-12) << "P" << order;
+    EXPECT_NEAR(rest.det_min, 1.0, 1e-12) << "P" << order;
     EXPECT_NEAR(rest.det_centroid, 1.0, 1e-12) << "P" << order;
     const auto corner = push_corner_through(*m);
     const FoldSite f = fold_site(*m);
-    EXPECT_LT(f.det_node, 0.0) << "P" << order;
-    EXPECT_NEAR(f.det_node, m->min_detF(), 1e-12) << "P" << order; // the same nodes as the line search checks
+    EXPECT_LT(f.det_min, 0.0) << "P" << order;
+    EXPECT_NEAR(f.det_min, m->min_detF(), 1e-12) << "P" << order; // the same points as the line search checks
     // The folded cell touches the pushed corner: its centroid lies within a
     // cell size (the mesh size; 1.5x for gmsh's spread) of it.
     const double d = std::hypot(f.x[0] - corner[0], f.x[1] - corner[1], f.x[2] - corner[2]);

@@ -105,7 +105,7 @@ int tag(const std::string& name);
 /// partner_residual_<t>, partner_jacobian_uw_<t>, partner_jacobian_ww_<t>
 /// for a term with a partner field); volume and area_<tag>.
 ufcx_form* form(const std::string& name, int degree);
-/// det F evaluated at the element nodes (inversion check).
+/// det F at the inversion check points (forms/geometry_forms.py).
 ufcx_expression* detF_expression(int degree);
 /// Factory of the displacement space ('u') of the compiled model.
 using FunctionSpaceFactory = ufcx_function_space* (*)(const char*);

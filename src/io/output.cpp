@@ -1,6 +1,7 @@
 #include "output.hpp"
 #include "errors.hpp"
 #include "interrupt.hpp"
+#include "log.hpp"
 #include "on_root.hpp"
 #include <cerrno>
 #include <cstring>
@@ -139,11 +140,59 @@ void refresh_marker(const fs::path& dir, MPI_Comm comm)
   on_root(comm, [&] { write_marker(dir, "complete"); });
 }
 
+namespace
+{
+/// Collective. Whether dolfinx's XDMF writer can evaluate `u` at every
+/// geometry node: it evaluates at each node in the last cell holding it, by
+/// a pull-back (a Newton solve on a curved P2 cell) that fails where a
+/// reference reset left a cell nearly folded at a node. Affine (P1) cells
+/// always pass.
+bool xdmf_can_evaluate(const dolfinx::fem::Function<T>& u)
+{
+  const auto& mesh = *u.function_space()->mesh();
+  const auto& g = mesh.geometry();
+  bool ok = true;
+  if (g.cmap().degree() > 1)
+  {
+    const std::size_t n = g.x().size() / 3;
+    std::vector<std::int32_t> cells(n, -1);
+    const auto& dofmap = g.dofmap();
+    for (std::int32_t c = 0; c < dofmap.num_nodes(); ++c)
+      for (const std::int32_t node : dofmap.links(c))
+        cells[node] = c;
+    const std::size_t vs = u.function_space()->element()->value_size();
+    std::vector<T> values(n * vs);
+    try
+    {
+      u.eval(g.x(), {n, 3}, cells, values, {n, vs});
+    }
+    catch (const std::runtime_error&)
+    {
+      ok = false;
+    }
+  }
+  bool all = ok;
+  MPI_Allreduce(&ok, &all, 1, MPI_C_BOOL, MPI_LAND, mesh.comm());
+  return all;
+}
+} // namespace
+
 void write_fields(Model& model, const fs::path& stem, bool xdmf, bool vtk)
 {
   auto u = model.displacement();
   auto mesh = model.mesh().mesh;
   fs::path file = stem.string() + ".h5";
+  if (xdmf && !xdmf_can_evaluate(*u))
+  {
+    // Curved P2 cells that XDMF's node evaluation cannot pull back: the
+    // native P2 VTK file carries the same field without evaluation.
+    log::warn("{}: XDMF cannot evaluate the displacement at every node of this curved P2 mesh "
+              "(dolfinx's pull-back fails on a strongly curved cell); written as VTK (native P2) "
+              "instead",
+              stem.filename().string());
+    xdmf = false;
+    vtk = true;
+  }
   try
   {
     if (xdmf)

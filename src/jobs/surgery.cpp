@@ -66,7 +66,7 @@ struct Table
 FoldSite fold_site(Model& model)
 {
   const TaggedDolfinxMesh& tm = model.mesh();
-  // det F at the element nodes, then at the centroid (forms/geometry_forms.py).
+  // det F at the check points, then at the centroid (forms/geometry_forms.py).
   auto expr = dolfinx::fem::create_expression<T>(*generated::detF_expression(tm.degree),
                                                   {{"u", model.displacement()}}, {}, tm.mesh);
   const std::int32_t nc = tm.mesh->topology().index_map(3)->size_local();
@@ -109,9 +109,9 @@ namespace
 std::string describe_fold(Model& model, const Config& c)
 {
   const FoldSite f = fold_site(model);
-  std::string s = fmt::format("; in the last converged state the smallest det F at an element node is {:.3g}, in "
+  std::string s = fmt::format("; in the last converged state the smallest det F at a check point is {:.3g}, in "
                               "the tetrahedron centred at ({:.1f}, {:.1f}, {:.1f}) mm (det F {:.3g} at its centroid)",
-                              f.det_node, 1e3 * f.x[0], 1e3 * f.x[1], 1e3 * f.x[2], f.det_centroid);
+                              f.det_min, 1e3 * f.x[0], 1e3 * f.x[1], 1e3 * f.x[2], f.det_centroid);
   meshes::IncisionGeometry g;
   try
   {

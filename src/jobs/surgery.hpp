@@ -37,11 +37,12 @@ struct SurgeryResult
 void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
 
 /// Where a deformation is closest to folding: the smallest det F at any
-/// element node (P2: corners and edge midpoints), det F at that cell's
-/// centroid and the centroid of its corners [m] (collective).
+/// inversion check point (forms/geometry_forms.py: P1 vertices, P2 the
+/// volume quadrature points), det F at that cell's centroid and the
+/// centroid of its corners [m] (collective).
 struct FoldSite
 {
-  double det_node = 0;
+  double det_min = 0;
   double det_centroid = 0;
   std::array<double, 3> x{};
 };

@@ -81,7 +81,8 @@ public:
   double volume();
   /// Reference area of a tagged boundary part (base, skin, symmetry, ...).
   double area(const std::string& tag);
-  /// Smallest det F over the element nodes (<= 0: inverted element).
+  /// Smallest det F over the inversion check points (forms/geometry_forms.py:
+  /// P1 vertices, P2 the volume quadrature points; and the centroids) (<= 0: inverted).
   double min_detF();
   /// Residual b = dPi/du with constrained rows set to u - g (ghosts updated).
   void assemble_residual(Vec b, const std::string& term = "");
@@ -154,7 +155,7 @@ private:
   std::map<std::string, std::shared_ptr<dolfinx::fem::Constant<T>>> _constants;
   std::map<std::string, FormSet> _forms; // "" = total
   std::shared_ptr<dolfinx::fem::Form<T>> _volume;
-  std::shared_ptr<dolfinx::fem::Expression<T>> _detF; // det F at the element nodes
+  std::shared_ptr<dolfinx::fem::Expression<T>> _detF; // det F at the check points
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<T>>> _bcs;
   std::vector<std::shared_ptr<PartnerField>> _partners;
   std::shared_ptr<MixedState> _mixed; ///< nullptr: displacement formulation

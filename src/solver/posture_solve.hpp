@@ -22,7 +22,7 @@ struct PostureResult
   LoadPathReport path;
   CoarseGuessReport coarse; ///< grid sequencing (src/solver/coarse_start.hpp), if used
   bool converged_from_guess = false; ///< Newton converged from the guess (no ramp)
-  double min_det_F = 0;     ///< smallest det F of the deformed state (element nodes)
+  double min_det_F = 0;     ///< smallest det F of the deformed state (check points)
   /// Mixed formulation: int p dV / V [Pa]; NaN for the displacement formulation.
   double mean_pressure = std::numeric_limits<double>::quiet_NaN();
   double seconds = 0;
