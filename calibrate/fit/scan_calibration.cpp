@@ -18,6 +18,7 @@
 #include <cmath>
 #include <dolfinx/common/IndexMap.h>
 #include <fmt/format.h>
+#include <functional>
 #include <utility>
 
 namespace breastsim::calibration
@@ -122,79 +123,105 @@ nlohmann::json distance_json(const ScanDistance& d)
 }
 } // namespace
 
-ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm comm)
+namespace
 {
-  const Stopwatch watch("scan calibration");
-  ScanCalibrationResult res;
-  res.parameters = r.parameters;
-  std::vector<std::string> names;
-  std::vector<double> lo, hi;
-  for (const auto& p : r.parameters)
+/// The misfit of a scan calibration: each fitted scan point's normal
+/// distance to the simulated skin over its scan's sigma, r_k = d_k / sigma
+/// (points within the chest margin left out), for the parameters y = ln p.
+class ScanMisfit
+{
+public:
+  ScanMisfit(const ScanCalibrationRequest& r, MPI_Comm comm) : _r(r), _comm(comm), mesh(&r.mesh)
   {
-    names.push_back(p.name);
-    lo.push_back(std::log(p.lower));
-    hi.push_back(std::log(p.upper));
+    for (const auto& p : r.parameters)
+      names.push_back(p.name);
+    for (const auto& s : r.fit)
+      _targets.push_back(&s);
+    for (std::size_t t = 0; t < r.fit.size(); ++t)
+      for (std::size_t i = 0; i < r.fit[t].points.size(); ++i)
+        if (r.fit[t].points[i][1] >= r.chest_margin)
+          _index.emplace_back(t, i);
+    if (_index.size() < 10 * r.parameters.size())
+      throw InputError(fmt::format("scan calibration: only {} scan points lie {:.1f} mm or more off the chest "
+                                   "(--chest-margin): too few for {} parameters",
+                                   _index.size(), 1e3 * r.chest_margin, r.parameters.size()));
   }
-  const std::vector<double> y0 = to_log(r.parameters, r.start);
-  std::vector<const ScanPoints*> fit_targets;
-  for (const auto& s : r.fit)
-    fit_targets.push_back(&s);
-  std::vector<std::pair<std::size_t, std::size_t>> index; // (target, point) of each residual, off the chest
-  for (std::size_t t = 0; t < r.fit.size(); ++t)
-    for (std::size_t i = 0; i < r.fit[t].points.size(); ++i)
-      if (r.fit[t].points[i][1] >= r.chest_margin)
-        index.emplace_back(t, i);
-  if (index.size() < 10 * r.parameters.size())
-    throw InputError(fmt::format("scan calibration: only {} scan points lie {:.1f} mm or more off the chest "
-                                 "(--chest-margin): too few for {} parameters",
-                                 index.size(), 1e3 * r.chest_margin, r.parameters.size()));
-  auto residuals = [&](const std::vector<std::vector<double>>& d)
+
+  /// The start's evaluation (its distance summaries into `at_start`); its
+  /// residuals are kept for the fit's first call.
+  void evaluate_start(std::vector<double> y0, std::vector<ScanDistance>& at_start)
   {
-    std::vector<double> res_v(index.size());
-    for (std::size_t k = 0; k < index.size(); ++k)
-      res_v[k] = d[index[k].first][index[k].second] / r.fit[index[k].first].sigma;
-    return res_v;
-  };
-  int evaluation = 0;
-  const meshes::TaggedMesh* mesh = &r.mesh;
-  std::vector<double> y_start = y0;  // where the current fit starts: a failed solve there is an error
-  std::vector<double> r_start;       // its residuals, when already known (the start's report)
-  ResidualFunction f = [&](const std::vector<double>& y) -> std::vector<double>
+    const ScanEvaluation e0 = evaluate(_r, _r.mesh, _r.start, _targets, false, _comm);
+    for (std::size_t t = 0; t < _r.fit.size(); ++t)
+      at_start.push_back(distance_summary(_r.fit[t], e0.distances[t], _r.chest_margin));
+    _y_start = std::move(y0);
+    _r_start = residuals(e0.distances);
+    ++_evaluation;
+  }
+
+  /// Where the next fit starts: a failed solve there is an error.
+  void start_at(std::vector<double> y) { _y_start = std::move(y); }
+
+  std::vector<double> operator()(const std::vector<double>& y)
   {
-    if (y == y_start && !r_start.empty())
-      return std::exchange(r_start, {});
-    const Config c = with_parameters(r.start, r.parameters, y);
+    if (y == _y_start && !_r_start.empty())
+      return std::exchange(_r_start, {});
+    const Config c = with_parameters(_r.start, _r.parameters, y);
     std::string ps;
     for (std::size_t j = 0; j < y.size(); ++j)
-      ps += fmt::format("{}{} = {:.6g} {}", j ? ", " : "", names[j], std::exp(y[j]), r.parameters[j].unit);
+      ps += fmt::format("{}{} = {:.6g} {}", j ? ", " : "", names[j], std::exp(y[j]), _r.parameters[j].unit);
     try
     {
-      const ScanEvaluation e = evaluate(r, *mesh, c, fit_targets, false, comm);
+      const ScanEvaluation e = evaluate(_r, *mesh, c, _targets, false, _comm);
       const std::vector<double> v = residuals(e.distances);
       double chi2 = 0;
       for (double x : v)
         chi2 += x * x;
-      log::info("scan calibration, evaluation {}: {}: chi2 {:.6g} ({} inverse iterations)", ++evaluation, ps, chi2,
-                e.inverse.iterations.size());
+      log::info("scan calibration, evaluation {}: {}: chi2 {:.6g} ({} inverse iterations)", ++_evaluation, ps,
+                chi2, e.inverse.iterations.size());
       return v;
     }
     catch (const SolveError& err)
     {
-      if (y == y_start)
+      if (y == _y_start)
         throw;
       // A trial step the material cannot hold: a large misfit rejects the step.
-      log::warn("scan calibration, evaluation {}: {}: {} (step rejected)", ++evaluation, ps, err.what());
-      return std::vector<double>(index.size(), 1e3);
+      log::warn("scan calibration, evaluation {}: {}: {} (step rejected)", ++_evaluation, ps, err.what());
+      return std::vector<double>(_index.size(), 1e3);
     }
-  };
-  {
-    const ScanEvaluation e0 = evaluate(r, r.mesh, r.start, fit_targets, false, comm);
-    for (std::size_t t = 0; t < r.fit.size(); ++t)
-      res.at_start.push_back(distance_summary(r.fit[t], e0.distances[t], r.chest_margin));
-    r_start = residuals(e0.distances);
-    ++evaluation;
   }
-  const LsqResult lsq = levenberg_marquardt(f, y0, lo, hi, r.lsq);
+
+  std::vector<std::string> names;
+  const meshes::TaggedMesh* mesh; ///< the mesh the evaluations use
+
+private:
+  std::vector<double> residuals(const std::vector<std::vector<double>>& d) const
+  {
+    std::vector<double> v(_index.size());
+    for (std::size_t k = 0; k < _index.size(); ++k)
+      v[k] = d[_index[k].first][_index[k].second] / _r.fit[_index[k].first].sigma;
+    return v;
+  }
+
+  const ScanCalibrationRequest& _r;
+  MPI_Comm _comm;
+  std::vector<const ScanPoints*> _targets;
+  std::vector<std::pair<std::size_t, std::size_t>> _index; ///< (target, point) of each residual
+  int _evaluation = 0;
+  std::vector<double> _y_start, _r_start;
+};
+
+std::size_t cells_on_root(const meshes::TaggedMesh& m, MPI_Comm comm)
+{
+  std::size_t n = m.num_cells();
+  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, comm);
+  return n;
+}
+
+/// The fit's values, misfit and Gauss-Newton uncertainty into `res`.
+void record_fit(const LsqResult& lsq, const std::vector<double>& y0, const std::vector<std::string>& names,
+                ScanCalibrationResult& res)
+{
   res.residuals = lsq.r.size();
   res.chi2 = lsq.chi2;
   const double dof = std::max<double>(1, double(lsq.r.size()) - double(y0.size()));
@@ -209,39 +236,38 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
     res.value.push_back(std::exp(lsq.y[j]));
   }
   res.se_log_noise = res.uncertainty.se_log;
-  res.mesh_ratio = r.mesh_ratio;
-  auto count_cells = [&](const meshes::TaggedMesh& m)
-  {
-    std::size_t n = m.num_cells();
-    MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, comm);
-    return n;
-  };
-  res.tetrahedra = count_cells(r.mesh);
-  if (r.mesh_ratio > 0)
-  {
-    res.coarse_tetrahedra = count_cells(r.coarse_mesh);
-    log::info("scan calibration: the fit again on a mesh {:g} times coarser ({} tetrahedra), for its "
-              "discretisation error", r.mesh_ratio, res.coarse_tetrahedra);
-    mesh = &r.coarse_mesh;
-    y_start = lsq.y;
-    const LsqResult coarse = levenberg_marquardt(f, lsq.y, lo, hi, r.lsq);
-    res.evaluations += coarse.evaluations;
-    auto& u = res.uncertainty;
-    for (std::size_t j = 0; j < y0.size(); ++j)
-    {
-      res.coarse_value.push_back(std::exp(coarse.y[j]));
-      res.se_log_mesh.push_back(std::abs(lsq.y[j] - coarse.y[j]) / (r.mesh_ratio - 1));
-      u.se_log[j] = std::hypot(u.se_log[j], res.se_log_mesh[j]);
-      u.interval[j] = {std::exp(lsq.y[j] - 1.96 * u.se_log[j]), std::exp(lsq.y[j] + 1.96 * u.se_log[j])};
-      if (u.flags[j].empty() && u.se_log[j] > max_se_log)
-        u.flags[j] = fmt::format("poorly determined: relative standard error {:.0f} %", 100 * u.se_log[j]);
-    }
-    mesh = &r.mesh;
-  }
-  res.calibrated = with_parameters(r.start, r.parameters, lsq.y);
+}
 
-  // The fitted neutral state and every scan against it: the source scan, the
-  // fitted ones and the held-out ones.
+/// The fit again on the coarser mesh: SE_mesh = |ln p_h - ln p_coarse| /
+/// (ratio - 1) added to each parameter's SE, the intervals widened.
+void widen_by_coarse_fit(const ScanCalibrationRequest& r, ScanMisfit& f, const LsqResult& lsq,
+                         const std::vector<double>& lo, const std::vector<double>& hi,
+                         ScanCalibrationResult& res, MPI_Comm comm)
+{
+  res.coarse_tetrahedra = cells_on_root(r.coarse_mesh, comm);
+  log::info("scan calibration: the fit again on a mesh {:g} times coarser ({} tetrahedra), for its "
+            "discretisation error", r.mesh_ratio, res.coarse_tetrahedra);
+  f.mesh = &r.coarse_mesh;
+  f.start_at(lsq.y);
+  const LsqResult coarse = levenberg_marquardt(std::ref(f), lsq.y, lo, hi, r.lsq);
+  f.mesh = &r.mesh;
+  res.evaluations += coarse.evaluations;
+  auto& u = res.uncertainty;
+  for (std::size_t j = 0; j < lsq.y.size(); ++j)
+  {
+    res.coarse_value.push_back(std::exp(coarse.y[j]));
+    res.se_log_mesh.push_back(std::abs(lsq.y[j] - coarse.y[j]) / (r.mesh_ratio - 1));
+    widen_interval(u, j, std::exp(lsq.y[j]), res.se_log_mesh[j]);
+    if (u.flags[j].empty() && u.se_log[j] > max_se_log)
+      u.flags[j] = fmt::format("poorly determined: relative standard error {:.0f} %", 100 * u.se_log[j]);
+  }
+}
+
+/// The fitted neutral state and every scan against it (the source scan, the
+/// fitted ones, the held-out ones); the reference mesh and nipple into the
+/// calibrated case.
+void evaluate_fitted(const ScanCalibrationRequest& r, ScanCalibrationResult& res, MPI_Comm comm)
+{
   std::vector<const ScanPoints*> all = {&r.source};
   for (const auto& s : r.fit)
     all.push_back(&s);
@@ -274,6 +300,31 @@ ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm c
   res.calibrated.set("geometry.H", res.nipple[1]);
   res.calibrated.set("geometry.nipple_z", res.nipple[2]);
   res.calibrated.set("geometry.refinements", std::int64_t(0));
+}
+} // namespace
+
+ScanCalibrationResult scan_calibrate(const ScanCalibrationRequest& r, MPI_Comm comm)
+{
+  const Stopwatch watch("scan calibration");
+  ScanCalibrationResult res;
+  res.parameters = r.parameters;
+  std::vector<double> lo, hi;
+  for (const auto& p : r.parameters)
+  {
+    lo.push_back(std::log(p.lower));
+    hi.push_back(std::log(p.upper));
+  }
+  const std::vector<double> y0 = to_log(r.parameters, r.start);
+  ScanMisfit f(r, comm);
+  f.evaluate_start(y0, res.at_start);
+  const LsqResult lsq = levenberg_marquardt(std::ref(f), y0, lo, hi, r.lsq);
+  record_fit(lsq, y0, f.names, res);
+  res.mesh_ratio = r.mesh_ratio;
+  res.tetrahedra = cells_on_root(r.mesh, comm);
+  if (r.mesh_ratio > 0)
+    widen_by_coarse_fit(r, f, lsq, lo, hi, res, comm);
+  res.calibrated = with_parameters(r.start, r.parameters, lsq.y);
+  evaluate_fitted(r, res, comm);
   res.seconds = watch.seconds();
   return res;
 }

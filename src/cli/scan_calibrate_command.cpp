@@ -119,6 +119,113 @@ calibration::ScanPoints scan_points(const std::string& file, const std::string& 
   s.points.assign(pts.begin(), pts.end());
   return s;
 }
+
+/// Rank 0: the scans read, checked and meshed into `r` (mesh, points per
+/// scan); `scans_json` describes them for the report; returns the numbers
+/// every rank needs (mesh size, order, footprint radius, nipple y, z).
+std::vector<double> read_scans_on_root(const ScanCalibrateOptions& o, calibration::ScanCalibrationRequest& r,
+                                       nlohmann::json& scans_json)
+{
+  std::vector<double> numbers;
+  on_root(MPI_COMM_WORLD, [&] { // every rank throws rank 0's InputError
+    std::vector<std::filesystem::path> files(o.scans.begin(), o.scans.end());
+    files.insert(files.end(), o.predict.begin(), o.predict.end());
+    const scan::ScanSeries s = scan::build_scan_series(files, o.chest, o.model, generated::tag("base"),
+                                                       generated::tag("skin"), generated::tag("symmetry"),
+                                                       o.mesh_ratio);
+    r.mesh = s.first.mesh.mesh;
+    r.coarse_mesh = s.coarse.mesh;
+    r.nipple_node = nearest_node(r.mesh, s.first.mesh.nipple);
+    r.source = scan_points(o.scans[0], o.postures[0], s.first_points, s.first.noise_rms, o.min_sigma);
+    nlohmann::json list = nlohmann::json::array();
+    list.push_back({{"file", o.scans[0]}, {"posture", o.postures[0]}, {"role", "meshed"},
+                    {"noise_rms_mm", 1e3 * s.first.noise_rms}});
+    for (std::size_t k = 0; k < s.others.size(); ++k)
+    {
+      const bool held_out = k + 1 >= o.scans.size();
+      const std::string& posture = held_out ? o.predict_postures[k + 1 - o.scans.size()] : o.postures[k + 1];
+      (held_out ? r.predict : r.fit)
+          .push_back(scan_points(s.others[k].file.string(), posture, s.others[k].points, s.others[k].noise_rms,
+                                 o.min_sigma));
+      list.push_back({{"file", s.others[k].file.string()}, {"posture", posture},
+                      {"role", held_out ? "predicted" : "fitted"}, {"noise_rms_mm", 1e3 * s.others[k].noise_rms}});
+    }
+    const auto& f = s.first.frame;
+    scans_json = {{"scans", list}, {"chest", o.chest},
+                  {"frame", {{"origin_m", f.origin}, {"e_x", f.ex}, {"e_y", f.ey}, {"e_z", f.ez},
+                             {"mirrored", f.mirrored()}}},
+                  {"tetrahedra", r.mesh.num_cells()}, {"mesh_size_m", s.first.mesh_size},
+                  {"chest_margin_m", o.chest_margin}};
+    numbers = {s.first.mesh_size, double(r.mesh.order), f.footprint_radius, s.first.mesh.nipple[1],
+               s.first.mesh.nipple[2]};
+  });
+  return numbers;
+}
+
+/// Rank 0's scan points on every rank (the residual vector's length).
+void broadcast_points(calibration::ScanPoints& s)
+{
+  std::string t = rank_of(MPI_COMM_WORLD) == 0
+                      ? nlohmann::json{{"f", s.file}, {"p", s.posture.name}, {"x", s.points}, {"s", s.sigma}}.dump()
+                      : std::string();
+  broadcast(t, MPI_COMM_WORLD);
+  const auto j = nlohmann::json::parse(t);
+  s = {j["f"].get<std::string>(), named_posture(j["p"].get<std::string>()),
+       j["x"].get<std::vector<calibration::Point>>(), j["s"].get<double>()};
+}
+
+/// Collective: rank 0's numbers, report description and scan points on
+/// every rank (the meshes are distributed by the model).
+void broadcast_scans(calibration::ScanCalibrationRequest& r, std::vector<double>& numbers,
+                     nlohmann::json& scans_json)
+{
+  std::string text
+      = rank_of(MPI_COMM_WORLD) == 0 ? nlohmann::json{{"n", numbers}, {"j", scans_json}}.dump() : std::string();
+  broadcast(text, MPI_COMM_WORLD);
+  if (rank_of(MPI_COMM_WORLD) != 0)
+  {
+    const auto j = nlohmann::json::parse(text);
+    numbers = j["n"].get<std::vector<double>>();
+    scans_json = j["j"];
+  }
+  broadcast_points(r.source);
+  std::size_t counts[2] = {r.fit.size(), r.predict.size()};
+  MPI_Bcast(counts, 2, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
+  r.fit.resize(counts[0]);
+  r.predict.resize(counts[1]);
+  for (auto& s : r.fit)
+    broadcast_points(s);
+  for (auto& s : r.predict)
+    broadcast_points(s);
+}
+
+/// Collective: the whole request: scans, start case, fit and solver settings.
+calibration::ScanCalibrationRequest scan_request(const ScanCalibrateOptions& o, Config start,
+                                                 const std::vector<calibration::FitParameter>& fit,
+                                                 nlohmann::json& scans_json)
+{
+  calibration::ScanCalibrationRequest r;
+  std::vector<double> numbers = read_scans_on_root(o, r, scans_json);
+  broadcast_scans(r, numbers, scans_json);
+  r.mesh.order = r.coarse_mesh.order = static_cast<int>(numbers[1]); // every rank: to_dolfinx's order
+  start.set("geometry.mesh_size", numbers[0]);
+  start.set("geometry.order", std::int64_t(numbers[1]));
+  start.set("geometry.R", numbers[2]);
+  // geometry.H and nipple_z (the nipple node) go with the mesh file into the calibrated case
+  std::vector<std::string> postures = o.postures;
+  postures.insert(postures.end(), o.predict_postures.begin(), o.predict_postures.end());
+  start.set("postures.names", postures);
+  start.set("postures.theta_deg", std::vector<double>{});
+  r.start = start;
+  r.parameters = fit;
+  r.chest_margin = o.chest_margin;
+  r.mesh_ratio = o.mesh_ratio;
+  r.lsq.max_iterations = o.max_iterations;
+  r.lsq.fd_step = 0.02; // 2 % of p: well above the inverse's 1e-6 m tolerance in the distances
+  r.lsq.xtol = 2e-3;
+  r.lsq.ftol_rel = 1e-5;
+  return r;
+}
 } // namespace
 
 Command add_scan_calibrate_command(CLI::App& root)
@@ -172,90 +279,8 @@ Command add_scan_calibrate_command(CLI::App& root)
               inputs.push_back(o->case_file);
             const auto out = claim_output(o->out, "results/scan-calibrate", inputs);
 
-            calibration::ScanCalibrationRequest r;
-            nlohmann::json scans_json = nlohmann::json::array();
-            std::vector<double> numbers; // mesh size, order, R, H, nipple_z (broadcast)
-            on_root(MPI_COMM_WORLD, [&] { // every rank throws rank 0's InputError
-              std::vector<std::filesystem::path> files(o->scans.begin(), o->scans.end());
-              files.insert(files.end(), o->predict.begin(), o->predict.end());
-              const scan::ScanSeries s = scan::build_scan_series(
-                  files, o->chest, o->model, generated::tag("base"), generated::tag("skin"),
-                  generated::tag("symmetry"), o->mesh_ratio);
-              r.mesh = s.first.mesh.mesh;
-              r.coarse_mesh = s.coarse.mesh;
-              r.nipple_node = nearest_node(r.mesh, s.first.mesh.nipple);
-              r.source = scan_points(o->scans[0], o->postures[0], s.first_points, s.first.noise_rms, o->min_sigma);
-              scans_json.push_back({{"file", o->scans[0]}, {"posture", o->postures[0]}, {"role", "meshed"},
-                                    {"noise_rms_mm", 1e3 * s.first.noise_rms}});
-              for (std::size_t k = 0; k < s.others.size(); ++k)
-              {
-                const bool held_out = k + 1 >= o->scans.size();
-                const std::string& posture
-                    = held_out ? o->predict_postures[k + 1 - o->scans.size()] : o->postures[k + 1];
-                (held_out ? r.predict : r.fit)
-                    .push_back(scan_points(s.others[k].file.string(), posture, s.others[k].points,
-                                           s.others[k].noise_rms, o->min_sigma));
-                scans_json.push_back({{"file", s.others[k].file.string()}, {"posture", posture},
-                                      {"role", held_out ? "predicted" : "fitted"},
-                                      {"noise_rms_mm", 1e3 * s.others[k].noise_rms}});
-              }
-              const auto& f = s.first.frame;
-              scans_json = {{"scans", scans_json}, {"chest", o->chest},
-                            {"frame", {{"origin_m", f.origin}, {"e_x", f.ex}, {"e_y", f.ey}, {"e_z", f.ez},
-                                       {"mirrored", f.mirrored()}}},
-                            {"tetrahedra", r.mesh.num_cells()}, {"mesh_size_m", s.first.mesh_size},
-                            {"chest_margin_m", o->chest_margin}};
-              numbers = {s.first.mesh_size, double(r.mesh.order), f.footprint_radius, s.first.mesh.nipple[1],
-                         s.first.mesh.nipple[2]};
-            });
-            // Rank 0's scan points are needed on every rank (the residual
-            // vector's length); the meshes are distributed by the model.
-            std::string text = rank_of(MPI_COMM_WORLD) == 0
-                                   ? nlohmann::json{{"n", numbers}, {"j", scans_json}}.dump() : std::string();
-            broadcast(text, MPI_COMM_WORLD);
-            if (rank_of(MPI_COMM_WORLD) != 0)
-            {
-              const auto j = nlohmann::json::parse(text);
-              numbers = j["n"].get<std::vector<double>>();
-              scans_json = j["j"];
-            }
-            auto bcast_points = [](calibration::ScanPoints& s)
-            {
-              std::string t = rank_of(MPI_COMM_WORLD) == 0
-                                  ? nlohmann::json{{"f", s.file}, {"p", s.posture.name}, {"x", s.points},
-                                                   {"s", s.sigma}}.dump() : std::string();
-              broadcast(t, MPI_COMM_WORLD);
-              const auto j = nlohmann::json::parse(t);
-              s = {j["f"].get<std::string>(), named_posture(j["p"].get<std::string>()),
-                   j["x"].get<std::vector<calibration::Point>>(), j["s"].get<double>()};
-            };
-            bcast_points(r.source);
-            std::size_t counts[2] = {r.fit.size(), r.predict.size()};
-            MPI_Bcast(counts, 2, MPI_UNSIGNED_LONG, 0, MPI_COMM_WORLD);
-            r.fit.resize(counts[0]);
-            r.predict.resize(counts[1]);
-            for (auto& s : r.fit)
-              bcast_points(s);
-            for (auto& s : r.predict)
-              bcast_points(s);
-
-            r.mesh.order = r.coarse_mesh.order = static_cast<int>(numbers[1]); // every rank: to_dolfinx's order
-            start.set("geometry.mesh_size", numbers[0]);
-            start.set("geometry.order", std::int64_t(numbers[1]));
-            start.set("geometry.R", numbers[2]);
-            // geometry.H and nipple_z (the nipple node) go with the mesh file into the calibrated case
-            std::vector<std::string> postures = o->postures;
-            postures.insert(postures.end(), o->predict_postures.begin(), o->predict_postures.end());
-            start.set("postures.names", postures);
-            start.set("postures.theta_deg", std::vector<double>{});
-            r.start = start;
-            r.parameters = fit;
-            r.chest_margin = o->chest_margin;
-            r.mesh_ratio = o->mesh_ratio;
-            r.lsq.max_iterations = o->max_iterations;
-            r.lsq.fd_step = 0.02; // 2 % of p: well above the inverse's 1e-6 m tolerance in the distances
-            r.lsq.xtol = 2e-3;
-            r.lsq.ftol_rel = 1e-5;
+            nlohmann::json scans_json;
+            const calibration::ScanCalibrationRequest r = scan_request(*o, start, fit, scans_json);
             const calibration::ScanCalibrationResult res = calibration::scan_calibrate(r, MPI_COMM_WORLD);
             calibration::write_scan_calibration(r, res, scans_json, out, MPI_COMM_WORLD);
             if (log::is_root())
