@@ -25,30 +25,6 @@ namespace breastsim::calibration
 {
 namespace
 {
-/// Node coordinates of the distributed mesh in the root mesh's numbering,
-/// gathered on rank 0 (as the neutral-state job writes its reference).
-std::vector<double> gather_nodes(const dolfinx::mesh::Mesh& mesh, std::size_t num_nodes)
-{
-  const auto& g = mesh.geometry();
-  const std::int32_t owned = g.index_map()->size_local();
-  std::vector<double> mine;
-  for (std::int32_t i = 0; i < owned; ++i)
-    mine.insert(mine.end(), {static_cast<double>(g.input_global_indices()[i]), g.x()[3 * i],
-                             g.x()[3 * i + 1], g.x()[3 * i + 2]});
-  const int size = static_cast<int>(mine.size());
-  std::vector<int> sizes(dolfinx::MPI::size(mesh.comm())), offsets(sizes.size(), 0);
-  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, mesh.comm());
-  for (std::size_t r = 1; r < sizes.size(); ++r)
-    offsets[r] = offsets[r - 1] + sizes[r - 1];
-  std::vector<double> all(rank_of(mesh.comm()) == 0 ? offsets.back() + sizes.back() : 0);
-  MPI_Gatherv(mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(), MPI_DOUBLE, 0,
-              mesh.comm());
-  std::vector<double> x(rank_of(mesh.comm()) == 0 ? 3 * num_nodes : 0);
-  for (std::size_t k = 0; k + 3 < all.size(); k += 4)
-    std::copy(&all[k + 1], &all[k + 4], &x[3 * static_cast<std::size_t>(all[k])]);
-  return x;
-}
-
 /// One evaluation: the neutral state of the meshed scan for case `c` and the
 /// signed normal distances of each target scan's points to its posture's
 /// simulated skin (every rank gets them).
@@ -71,7 +47,7 @@ ScanEvaluation evaluate(const ScanCalibrationRequest& r, const meshes::TaggedMes
   ScanEvaluation e;
   e.inverse = inverse_neutral_state(model, newton, r.inverse, f);
   if (keep_reference)
-    e.reference = gather_nodes(*model.mesh().mesh, mesh.num_nodes());
+    e.reference = gather_geometry_nodes(*model.mesh().mesh, mesh.num_nodes());
   const Guess last{[](Model&, std::string&) { return true; }, "the neutral state's u", true};
   double theta = r.source.posture.theta_deg; // u is the inverse's forward solve in the source posture
   for (const ScanPoints* t : targets)

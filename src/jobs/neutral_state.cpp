@@ -28,30 +28,6 @@ meshes::TaggedMesh root_mesh(const HalfCapSpec& spec)
                                 : meshes::read_user_mesh(spec.mesh_file, spec.order, {base, skin, sym});
 }
 
-/// Node coordinates of the distributed mesh in the root mesh's numbering
-/// (input global indices), gathered on rank 0.
-std::vector<double> gather_nodes(const dolfinx::mesh::Mesh& mesh, std::size_t num_nodes)
-{
-  const auto& g = mesh.geometry();
-  const std::int32_t owned = g.index_map()->size_local();
-  std::vector<double> mine;
-  for (std::int32_t i = 0; i < owned; ++i)
-    mine.insert(mine.end(), {static_cast<double>(g.input_global_indices()[i]), g.x()[3 * i],
-                             g.x()[3 * i + 1], g.x()[3 * i + 2]});
-  const int size = static_cast<int>(mine.size());
-  std::vector<int> sizes(dolfinx::MPI::size(mesh.comm())), offsets(sizes.size(), 0);
-  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, mesh.comm());
-  for (std::size_t r = 1; r < sizes.size(); ++r)
-    offsets[r] = offsets[r - 1] + sizes[r - 1];
-  std::vector<double> all(rank_of(mesh.comm()) == 0 ? offsets.back() + sizes.back() : 0);
-  MPI_Gatherv(mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(), MPI_DOUBLE, 0,
-              mesh.comm());
-  std::vector<double> x(rank_of(mesh.comm()) == 0 ? 3 * num_nodes : 0);
-  for (std::size_t k = 0; k + 3 < all.size(); k += 4)
-    std::copy(&all[k + 1], &all[k + 4], &x[3 * static_cast<std::size_t>(all[k])]);
-  return x;
-}
-
 /// The case of the reference: its mesh file and nipple.
 Config reference_case(const Config& c, const std::array<double, 3>& nipple)
 {
@@ -127,7 +103,7 @@ NeutralStateResult neutral_state(const Config& c, const Posture& posture, const 
   NeutralStateResult r{posture, {}, {}, 0};
   r.inverse = inverse_neutral_state(model, newton, o, f);
   OutputDir dir(out, comm);
-  const std::vector<double> x = gather_nodes(*model.mesh().mesh, loaded.num_nodes());
+  const std::vector<double> x = gather_geometry_nodes(*model.mesh().mesh, loaded.num_nodes());
   if (rank_of(comm) == 0)
   {
     for (std::size_t i = 0; i < x.size(); ++i)

@@ -1,6 +1,7 @@
 #include "mesh_from_gmsh.hpp"
 #include "breastsim_registry.hpp"
 #include <algorithm>
+#include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/CoordinateElement.h>
 #include <dolfinx/fem/ElementDofLayout.h>
 #include <dolfinx/graph/AdjacencyList.h>
@@ -72,5 +73,31 @@ TaggedDolfinxMesh to_dolfinx(MPI_Comm comm, const meshes::TaggedMesh& m, int ord
   auto tags = std::make_shared<mesh::MeshTags<std::int32_t>>(
       mesh::create_meshtags(mesh, 2, adj, std::span<const std::int32_t>(values)));
   return {mesh, tags, order};
+}
+
+std::vector<double> gather_geometry_nodes(const dolfinx::mesh::Mesh& mesh, std::size_t num_nodes)
+{
+  // Each owned node as (input index, x, y, z), gathered and placed by index.
+  const auto& g = mesh.geometry();
+  const std::int32_t owned = g.index_map()->size_local();
+  std::vector<double> mine;
+  for (std::int32_t i = 0; i < owned; ++i)
+    mine.insert(mine.end(), {static_cast<double>(g.input_global_indices()[i]), g.x()[3 * i],
+                             g.x()[3 * i + 1], g.x()[3 * i + 2]});
+  int rank, nranks;
+  MPI_Comm_rank(mesh.comm(), &rank);
+  MPI_Comm_size(mesh.comm(), &nranks);
+  const int size = static_cast<int>(mine.size());
+  std::vector<int> sizes(nranks), offsets(nranks, 0);
+  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, mesh.comm());
+  for (int r = 1; r < nranks; ++r)
+    offsets[r] = offsets[r - 1] + sizes[r - 1];
+  std::vector<double> all(rank == 0 ? offsets.back() + sizes.back() : 0);
+  MPI_Gatherv(mine.data(), size, MPI_DOUBLE, all.data(), sizes.data(), offsets.data(), MPI_DOUBLE, 0,
+              mesh.comm());
+  std::vector<double> x(rank == 0 ? 3 * num_nodes : 0);
+  for (std::size_t k = 0; k + 3 < all.size(); k += 4)
+    std::copy(&all[k + 1], &all[k + 4], &x[3 * static_cast<std::size_t>(all[k])]);
+  return x;
 }
 } // namespace breastsim

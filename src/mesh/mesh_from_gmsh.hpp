@@ -23,4 +23,9 @@ std::vector<std::int32_t> tagged_facets(const dolfinx::mesh::MeshTags<std::int32
 
 /// Distribute `m` (data on rank 0 only; `order` must agree on all ranks).
 TaggedDolfinxMesh to_dolfinx(MPI_Comm comm, const meshes::TaggedMesh& m, int order);
+
+/// Collective. The node coordinates of a mesh made by to_dolfinx, in the
+/// numbering of its TaggedMesh (the input global indices), gathered on
+/// rank 0 ((num_nodes, 3) row-major; empty on the other ranks).
+std::vector<double> gather_geometry_nodes(const dolfinx::mesh::Mesh& mesh, std::size_t num_nodes);
 } // namespace breastsim
