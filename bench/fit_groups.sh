@@ -9,12 +9,14 @@
 # own Jacobian columns and probes; the other solves are replicated).
 # REPEATS times in turn (default 3); medians and the median of the ratios
 # against the 1-rank run of the same repetition.
-# Usage: bash bench/fit_groups.sh [BUILD_DIR] [REPEATS]
+# Usage: bash bench/fit_groups.sh [BUILD_DIR] [REPEATS] [JOBS]
+#   JOBS: a subset of "calibrate control_01" (default both), quoted
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/.." && pwd)"
 bin="$(cd "${1:-$repo/build}" && pwd)/breastsim"
 repeats="${2:-3}"
+jobs="${3:-calibrate control_01}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -39,7 +41,7 @@ timed() { # OUT_NAME COMMAND...: wall seconds; a failed run stops the benchmark
 : >"$work/times"
 for i in $(seq 1 "$repeats"); do
   row=""
-  for job in calibrate control_01; do
+  for job in $jobs; do
     if [ "$job" = calibrate ]; then args=("${cal[@]}"); else read -r -a args <<<"$(dia "$job")"; fi
     s=$(timed "s_$job" "$bin" -q "${args[@]}") || exit 1
     g=$(timed "g_$job" mpirun -n 2 "$bin" -q "${args[@]}" --ranks-per-case 1) || exit 1
@@ -48,10 +50,11 @@ for i in $(seq 1 "$repeats"); do
   done
   echo "$row" >>"$work/times"
 done
-python3 - "$work/times" <<'PY'
+python3 - "$work/times" $jobs <<'PY'
 import statistics, sys
 rows = [list(map(float, l.split())) for l in open(sys.argv[1])]
-for k, job in enumerate(["calibrate mu,c,lambda", "diagnose control_01"]):
+names = {"calibrate": "calibrate mu,c,lambda", "control_01": "diagnose control_01"}
+for k, job in enumerate(names[j] for j in sys.argv[2:]):
     s = statistics.median(r[2 * k] for r in rows)
     g = statistics.median(r[2 * k + 1] for r in rows)
     ratio = statistics.median(r[2 * k] / r[2 * k + 1] for r in rows)
