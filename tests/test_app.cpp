@@ -4,6 +4,7 @@
 #include "case_request.hpp"
 #include "data_folder.hpp"
 #include "errors.hpp"
+#include "input_error_message.hpp"
 #include "job_id.hpp"
 #include "job_progress.hpp"
 #include "result_summary.hpp"
@@ -19,18 +20,7 @@ namespace fs = std::filesystem;
 
 namespace
 {
-std::string message_of(const std::function<void()>& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const InputError& e)
-  {
-    return e.what();
-  }
-  return "";
-}
+using fixtures::message_of;
 
 /// The outer skin of a quarter sphere of radius r (x >= 0, y >= 0), centred
 /// at the origin, as a surface document: counter-clockwise from outside.

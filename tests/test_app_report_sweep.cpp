@@ -3,6 +3,7 @@
 // sweep job (sweep_request.cpp) with the CLI's messages for bad values.
 #include "case_request.hpp"
 #include "errors.hpp"
+#include "input_error_message.hpp"
 #include "report.hpp"
 #include "sweep_request.hpp"
 #include <functional>
@@ -14,19 +15,7 @@ using nlohmann::json;
 
 namespace
 {
-/// The InputError's message of `f`, or "" if it throws none.
-std::string message_of(const std::function<void()>& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const InputError& e)
-  {
-    return e.what();
-  }
-  return "";
-}
+using fixtures::message_of;
 
 /// RFC 4648 base64 of `bytes` with padding: the closed form the decoder inverts.
 std::string base64_encode(const std::string& bytes)

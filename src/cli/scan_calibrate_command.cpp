@@ -10,6 +10,7 @@
 #include "fit_parameters.hpp"
 #include "log.hpp"
 #include "on_root.hpp"
+#include "option_checks.hpp"
 #include "overrides.hpp"
 #include "scan_calibration.hpp"
 #include "scan_readers.hpp"
@@ -35,23 +36,6 @@ struct ScanCalibrateOptions
   scan::ScanModelOptions model;
   OutputOption out;
 };
-
-scan::Vec3 parse_vector(const std::string& text, const std::string& option)
-{
-  std::istringstream in(text);
-  scan::Vec3 v;
-  char c1 = 0, c2 = 0;
-  if (!(in >> v[0] >> c1 >> v[1] >> c2 >> v[2]) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
-      !std::isfinite(v[0] + v[1] + v[2]))
-    throw InputError(fmt::format("{} = '{}': three finite numbers x,y,z are needed", option, text));
-  return v;
-}
-
-void check_range(double v, double lo, double hi, const std::string& option, const std::string& unit)
-{
-  if (!(v >= lo && v <= hi))
-    throw InputError(fmt::format("{} = {} is out of range: allowed [{}, {}] {}", option, v, lo, hi, unit));
-}
 
 /// Every option checked (InputError naming it) before any work.
 void check_options(ScanCalibrateOptions& o, const Config& start, std::vector<calibration::FitParameter>& fit)

@@ -5,6 +5,7 @@
 #include "command.hpp"
 #include "errors.hpp"
 #include "log.hpp"
+#include "option_checks.hpp"
 #include "overrides.hpp"
 #include "scan_synthetic.hpp"
 #include <fmt/format.h>
@@ -36,12 +37,6 @@ scan::ScanFormat parse_format(const std::string& f, bool& points_only)
   if (f == "ply-ascii")
     return scan::ScanFormat::ply_ascii;
   return scan::ScanFormat::obj;
-}
-
-void check_range(double v, double lo, double hi, const std::string& option)
-{
-  if (!(v >= lo && v <= hi))
-    throw InputError(fmt::format("{} = {} is out of range: allowed [{}, {}]", option, v, lo, hi));
 }
 } // namespace
 
