@@ -5,8 +5,8 @@
 #include "job_progress.hpp"
 #include "log.hpp"
 #include "output_target.hpp"
+#include "progress_channel.hpp"
 #include "result_summary.hpp"
-#include "sweep_request.hpp"
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -187,13 +187,10 @@ void JobQueue::refresh_progress(const std::string& id, const JobRecord& r)
   try
   {
     const fs::path folder = _store.folder(id);
-    const std::string log = read_text(folder / "log.txt");
     const auto p = r.kind == "calibrate"
-                       ? calibration_progress(r.options.value("max_evals", 1), read_evaluations(folder).size(), log)
-                       : progress_from_log(r.kind,
-                                           r.kind == "sweep" ? sweep_size(r.options.at("vary"))
-                                                             : posture_count(case_from_overrides(r.overrides)),
-                                           log);
+                       ? calibration_progress(r.options.value("max_evals", 1), read_evaluations(folder).size(),
+                                              read_text(folder / "log.txt"))
+                       : last_progress(read_text(folder / progress_file));
     _store.update(id, [&](JobRecord& rec) {
       rec.progress = p.fraction;
       rec.stage = p.stage.empty() ? rec.stage : p.stage;
@@ -225,6 +222,8 @@ void JobQueue::finish(const std::string& id, int exit_code, bool cancelled)
     result.stage = "finished";
     result.summary = summarize_result(record.kind, case_from_overrides(record.overrides), folder / "result");
     result.files = result_files(folder);
+    if (fs::exists(folder / progress_file))
+      result.files[progress_file] = progress_file;
   }
   else
   {

@@ -6,6 +6,7 @@
 #include "job_evaluations.hpp"
 #include "job_id.hpp"
 #include "job_request.hpp"
+#include "progress_channel.hpp"
 #include "simulate.hpp"
 #include "surgery.hpp"
 #include "sweep_request.hpp"
@@ -78,12 +79,13 @@ void run(const fs::path& folder)
   if (kind == "calibrate")
     return calibrate(folder, request, c, rules);
   const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
+  const Progress progress = progress_into(folder); // the structured progress channel
   if (kind == "surgery")
-    surgery(c, target, MPI_COMM_WORLD);
+    surgery(c, target, MPI_COMM_WORLD, progress);
   else if (kind == "simulate")
-    simulate(c, target, MPI_COMM_WORLD);
+    simulate(c, target, MPI_COMM_WORLD, progress);
   else if (kind == "sweep")
-    sweep(c, sweep_grid(request.at("vary"), c), target, MPI_COMM_WORLD);
+    sweep(c, sweep_grid(request.at("vary"), c), target, MPI_COMM_WORLD, 0, progress);
   else
     throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate, sweep");
 }

@@ -120,13 +120,16 @@ std::string newton_tables(const std::vector<PostureResult>& rs, const std::strin
 
 std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
                                           const Config& c, const std::filesystem::path& dir,
-                                          CoarseStart* coarse)
+                                          CoarseStart* coarse, const Progress& progress)
 {
   NewtonSolver newton(model, NewtonOptions::from(c));
   const OutputOptions output = OutputOptions::from(c);
   std::vector<PostureResult> out;
-  for (const auto& p : requested_postures(c))
+  const auto postures = requested_postures(c);
+  for (const auto& p : postures)
   {
+    progress.report(fmt::format("posture {} ({} of {})", p.name, out.size() + 1, postures.size()),
+                    static_cast<double>(out.size()) / static_cast<double>(postures.size()));
     log::info("solving posture '{}' (theta = {:g} deg)", p.name, p.theta_deg);
     out.push_back(solve_posture(model, newton, probe, p, c, coarse));
     write_fields(model, dir / ("displacement_" + p.name), output.xdmf, output.vtk);
@@ -135,9 +138,12 @@ std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& p
   return out;
 }
 
-SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm)
+SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm, const Progress& progress)
 {
   SimulationResult res;
+  // Stages: meshing, the N postures, the pictures: share 1 / (N + 2) each.
+  const double stages = static_cast<double>(requested_postures(c).size()) + 2;
+  progress.report("meshing", 0);
   const CaseOptions case_options = CaseOptions::from(c);
   check_tissue_formulation(c); // e.g. a mixed case needs P2: refused before the mesh
   check_picture_tools(comm); // fail before the solves, not after
@@ -178,7 +184,8 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   }
 
   OutputDir dir(out, comm);
-  res.postures = solve_postures(model, probe, c, dir.path(), coarse.get());
+  res.postures = solve_postures(model, probe, c, dir.path(), coarse.get(),
+                                progress.part(1 / stages, (stages - 1) / stages));
 
   nlohmann::json j;
   j["case"] = case_options.name;
@@ -210,8 +217,10 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   j["newton_records"] = newton_records_json(res.postures);
   write_json(dir.path() / "summary.json", j, comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
+  progress.report("pictures", (stages - 1) / stages);
   render_pictures(dir.path(), {}, comm);
   dir.commit();
+  progress.report("finished", 1);
   return res;
 }
 } // namespace breastsim

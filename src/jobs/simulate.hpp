@@ -5,6 +5,7 @@
 #include "mesh_quality.hpp"
 #include "output_target.hpp"
 #include "posture_solve.hpp"
+#include "progress.hpp"
 #include <filesystem>
 #include <memory>
 
@@ -24,12 +25,15 @@ struct SimulationResult
 
 /// Solve every requested posture of the case from the model's current
 /// reference and write each displacement as <dir>/displacement_<posture>.
+/// `progress`: "posture NAME (k of N)" as each posture begins, at (k - 1) / N.
 std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& probe,
                                           const Config& c, const std::filesystem::path& dir,
-                                          CoarseStart* coarse = nullptr);
+                                          CoarseStart* coarse = nullptr, const Progress& progress = {});
 
 /// The whole `simulate` job. Writes into `out` (replaced only on success).
-SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm);
+/// `progress`: meshing, each posture, pictures (N + 2 stages of equal share), finished.
+SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm,
+                          const Progress& progress = {});
 
 /// Short printable table of the observables of each posture.
 std::string observables_table(const std::vector<PostureResult>& r);

@@ -247,14 +247,16 @@ void incise_and_suture(Model& post, const Config& c, const std::filesystem::path
 }
 } // namespace
 
-SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
+SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm, const Progress& progress)
 {
   SurgeryResult r;
+  const double postures = static_cast<double>(requested_postures(c).size()), stages = 2 * postures + 3;
   const CaseOptions case_options = CaseOptions::from(c);
   case_options.geometry.require_parametric_cap("surgery (the incision cuts the cap)");
   // The incision first: it rejects bad parameters before any meshing.
   r.incision = meshes::incision_geometry(case_options.geometry, IncisionSpec::from(c));
   check_picture_tools(comm);
+  progress.report("meshing", 0);
   SurgeryMeshes bodies = mesh_surgery(c, comm, r);
   OutputDir dir(out, comm);
   std::filesystem::create_directories(dir.path() / "preop");
@@ -278,30 +280,35 @@ SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
     log::info("surgery: pre-operative postures");
     const auto coarse = make_coarse_start(c, pre);
     r.pre = solve_postures(pre, ObservableProbe(pre, {0.0, case_options.geometry.H, 0.0}), c,
-                           dir.path() / "preop", coarse.get());
+                           dir.path() / "preop", coarse.get(),
+                           progress.part(1 / stages, (1 + postures) / stages, "pre-operative "));
     r.seconds_pre = clock.seconds();
   }
 
   // 2., 3. Incision, sutures, final neutral state.
   Model post(bodies.cut, Constraints{true, case_options.fixed_base});
   apply_parameters(c, post);
+  progress.report("sutures", (1 + postures) / stages);
   incise_and_suture(post, c, dir.path(), r);
 
   // 4. Post-operative postures from the new reference (sutures stay knitted).
   {
     Stopwatch clock("surgery: post-operative postures");
     log::info("surgery: post-operative postures");
-    r.post = solve_postures(post, ObservableProbe(post, r.new_nipple_neutral), c, dir.path() / "postop");
+    r.post = solve_postures(post, ObservableProbe(post, r.new_nipple_neutral), c, dir.path() / "postop", nullptr,
+                            progress.part((2 + postures) / stages, (2 + 2 * postures) / stages, "post-operative "));
     r.seconds_post = clock.seconds();
   }
 
   write_json(dir.path() / "summary.json", to_json(r), comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
   // Pictures: each stage's postures, post-op against pre-op, and the 3D page.
+  progress.report("pictures", (stages - 1) / stages);
   render_pictures(dir.path() / "preop", {}, comm);
   render_pictures(dir.path() / "postop", {dir.path() / "preop"}, comm);
   write_view_page(dir.path() / "postop", dir.path() / "preop", comm);
   dir.commit();
+  progress.report("finished", 1);
   return r;
 }
 

@@ -57,7 +57,9 @@ SutureReport close_sutures(Model& model, const Config& c);
 double max_suture_gap(const Model& model);
 
 /// The whole surgery job; writes into `out` (replaced only on success).
-SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm);
+/// `progress`: meshing, each pre-operative posture, the sutures, each
+/// post-operative posture, the pictures (2 N + 3 stages of equal share), finished.
+SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm, const Progress& progress = {});
 std::string surgery_table(const SurgeryResult& r);
 nlohmann::json to_json(const SurgeryResult& r);
 } // namespace breastsim

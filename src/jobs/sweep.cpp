@@ -46,7 +46,7 @@ std::vector<Value> sweep_values(const Config& base, const std::string& key, cons
 namespace
 {
 SweepRow run_one(Config c, const std::map<std::string, Value>& values, const std::filesystem::path& dir,
-                 MPI_Comm comm)
+                 MPI_Comm comm, const Progress& progress)
 {
   SweepRow row;
   row.parameters = values;
@@ -56,7 +56,7 @@ SweepRow run_one(Config c, const std::map<std::string, Value>& values, const std
     for (const auto& [k, v] : values)
       c.set(k, v);
     c.validate();
-    auto r = surgery(c, OutputTarget::claim(dir.string(), {}, comm), comm);
+    auto r = surgery(c, OutputTarget::claim(dir.string(), {}, comm), comm, progress);
     auto it = std::find_if(r.post.begin(), r.post.end(),
                            [](const PostureResult& p) { return p.posture.theta_deg == 0.0; });
     const auto& o = it->observables;
@@ -177,16 +177,21 @@ std::vector<std::pair<std::map<std::string, Value>, std::string>> combinations(c
 /// whole communicator (with the Newton records of the rows its own group
 /// solved), all rows on every rank when there is one group.
 std::vector<SweepRow> run_all(const Config& base, const SweepGrid& grid, const std::filesystem::path& dir,
-                              const CaseGroups& groups)
+                              const CaseGroups& groups, const Progress& progress)
 {
   const auto combos = combinations(grid);
   std::vector<SweepRow> mine(combos.size());
   std::vector<std::string> texts(combos.size());
+  std::size_t share = 0, done = 0; // this group's combinations, those begun
+  for (std::size_t i = 0; i < combos.size(); ++i)
+    share += groups.runs(i) ? 1 : 0;
   for (std::size_t i = 0; i < combos.size(); ++i)
     if (groups.runs(i))
     {
       log::info("sweep: {} (group {} of {})", combos[i].second, groups.group() + 1, groups.groups());
-      mine[i] = run_one(base, combos[i].first, dir / combos[i].second, groups.comm());
+      const double n = static_cast<double>(share), k = static_cast<double>(done++);
+      const auto part = progress.part(k / n, (k + 1) / n, fmt::format("{} ({} of {}): ", combos[i].second, done, share));
+      mine[i] = run_one(base, combos[i].first, dir / combos[i].second, groups.comm(), part);
       if (rank_of(groups.comm()) == 0)
         texts[i] = to_json(mine[i]).dump();
     }
@@ -214,13 +219,13 @@ void check_sweep_request(const Config& base, const SweepGrid& grid)
 }
 
 std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const OutputTarget& out,
-                            MPI_Comm comm, int ranks_per_case)
+                            MPI_Comm comm, int ranks_per_case, const Progress& progress)
 {
   check_sweep_request(base, grid);
   HalfCapSpec::from(base).require_parametric_cap("sweep (the incision cuts the cap)");
   const CaseGroups groups(comm, ranks_per_case, "--ranks-per-case");
   OutputDir dir(out, comm);
-  const std::vector<SweepRow> rows = run_all(base, grid, dir.path(), groups);
+  const std::vector<SweepRow> rows = run_all(base, grid, dir.path(), groups, progress);
   // The table files (written by rank 0, which holds every row).
   nlohmann::json j = nlohmann::json::array();
   std::string csv;

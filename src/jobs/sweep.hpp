@@ -40,9 +40,11 @@ using SweepGrid = std::vector<std::pair<std::string, std::vector<Value>>>;
 void check_sweep_request(const Config& base, const SweepGrid& grid);
 /// `ranks_per_case` K: the ranks of `comm` split into groups of K, each
 /// solving its share of the combinations (0: all ranks on each, in turn);
-/// the table is complete on rank 0.
+/// the table is complete on rank 0. `progress`: each combination of a
+/// group's share (an equal part each), the surgery's stages inside it,
+/// prefixed with the combination's label.
 std::vector<SweepRow> sweep(const Config& base, const SweepGrid& grid, const OutputTarget& out,
-                            MPI_Comm comm, int ranks_per_case = 0);
+                            MPI_Comm comm, int ranks_per_case = 0, const Progress& progress = {});
 std::string sweep_table(const std::vector<SweepRow>& rows);
 /// "key=value, ..." of a row's parameters.
 std::string sweep_label(const SweepRow& row);
