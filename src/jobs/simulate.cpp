@@ -40,6 +40,22 @@ nlohmann::json records_json(const LoadPathReport& path)
   }
   return records;
 }
+
+/// The grid sequencing ladder of summary.json: unknowns, set-up time, levels.
+nlohmann::json coarse_start_json(const CoarseStart& coarse, const SimulationResult& res)
+{
+  nlohmann::json j = {{"unknowns", res.coarse_dofs}, {"setup_s", res.coarse_setup_seconds},
+                      {"levels", nlohmann::json::array()}};
+  for (std::size_t k = 0; k < coarse.num_levels(); ++k)
+  {
+    const NestedLevel& l = coarse.ladder()[k];
+    j["levels"].push_back({{"unknowns", res.coarse_level_dofs[k]},
+                           {"mesh_size_m", l.mesh_size},
+                           {"order", l.order},
+                           {"refinements", l.refinements}});
+  }
+  return j;
+}
 } // namespace
 
 nlohmann::json newton_records_json(const std::vector<PostureResult>& rs)
@@ -196,18 +212,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   j["tissue_formulation"] = to_string(case_options.formulation);
   j["linear_solver"] = res.linear_solver;
   if (coarse)
-  {
-    j["coarse_start"] = {{"unknowns", res.coarse_dofs}, {"setup_s", res.coarse_setup_seconds},
-                         {"levels", nlohmann::json::array()}};
-    for (std::size_t k = 0; k < coarse->num_levels(); ++k)
-    {
-      const NestedLevel& l = coarse->ladder()[k];
-      j["coarse_start"]["levels"].push_back({{"unknowns", res.coarse_level_dofs[k]},
-                                             {"mesh_size_m", l.mesh_size},
-                                             {"order", l.order},
-                                             {"refinements", l.refinements}});
-    }
-  }
+    j["coarse_start"] = coarse_start_json(*coarse, res);
   int size;
   MPI_Comm_size(comm, &size);
   j["mpi_ranks"] = size;
