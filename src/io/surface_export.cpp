@@ -1,6 +1,7 @@
 #include "surface_export.hpp"
 #include "breastsim_registry.hpp"
 #include "output.hpp"
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -90,11 +91,23 @@ std::vector<double> gather_to_root(const std::vector<double>& local, MPI_Comm co
 double round_to(double v, double step) { return std::round(v / step) * step; }
 } // namespace
 
+bool is_half_model(const Model& model)
+{
+  const auto& tags = *model.mesh().facets;
+  const int symmetry = generated::tag("symmetry");
+  int local = static_cast<int>(
+      std::count(tags.values().begin(), tags.values().end(), symmetry));
+  int total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_INT, MPI_SUM, model.mesh().mesh->comm());
+  return total > 0;
+}
+
 SkinSurface gather_skin_surface(const Model& model)
 {
   MPI_Comm comm = model.mesh().mesh->comm();
   const auto all = gather_to_root(local_triangles(model), comm);
   SkinSurface s;
+  s.half_model = is_half_model(model);
   // Merge corners shared by several triangles (and ranks) by reference
   // position, to a nanometre (ranks may differ in the last bits).
   std::map<std::array<std::int64_t, 3>, std::int32_t> index;
@@ -139,14 +152,17 @@ nlohmann::json surface_json(const SkinSurface& s, const std::string& posture, do
   std::vector<std::int32_t> tris;
   for (const auto& t : s.triangles)
     tris.insert(tris.end(), t.begin(), t.end());
-  return {{"posture", posture},
-          {"theta_deg", theta_deg},
-          {"units", "m"},
-          {"half_model", "x >= 0; mirror x -> -x for the full breast"},
-          {"vertices_ref", ref},
-          {"vertices", def},
-          {"triangles", tris},
-          {"fields", {{"displacement_mm", disp_mm}}}};
+  nlohmann::json doc = {{"posture", posture},
+                        {"theta_deg", theta_deg},
+                        {"units", "m"},
+                        {"mirror_x", s.half_model}};
+  if (s.half_model)
+    doc["half_model"] = "x >= 0; mirror x -> -x for the full breast";
+  doc["vertices_ref"] = ref;
+  doc["vertices"] = def;
+  doc["triangles"] = tris;
+  doc["fields"] = {{"displacement_mm", disp_mm}};
+  return doc;
 }
 
 void write_surface(const Model& model, const std::string& posture, double theta_deg,

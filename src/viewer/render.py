@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Pictures of breastsim results (headless matplotlib, Agg backend).
 
-Reads the surface_<posture>.json files of a result folder (the half breast,
-x >= 0, written by `breastsim simulate`), mirrors them to the full breast and
-writes into the output folder (default: the result folder):
+Reads the surface_<posture>.json files of a result folder (written by
+`breastsim simulate`), mirrors a half model (x >= 0, "mirror_x": true) to the
+full breast (a full breast, e.g. a scan, is drawn as it is) and writes
+into the output folder (default: the result folder):
 
   view_<posture>.png   front, side and oblique view, coloured by the
                        displacement magnitude [mm], with a colour bar
@@ -58,8 +59,23 @@ def parse_size(text):
     return w, h
 
 
+def sagittal_section(ref, tri):
+    """The skin's curve in the plane x = 0, ordered around the origin: its
+    vertices on the plane and the points where triangle edges cross it."""
+    pts = [ref[np.abs(ref[:, 0]) < 1e-6]]
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        p, q = ref[tri[:, a]], ref[tri[:, b]]
+        cross = p[:, 0] * q[:, 0] < 0
+        t = p[cross, 0] / (p[cross, 0] - q[cross, 0])
+        pts.append(p[cross] + t[:, None] * (q[cross] - p[cross]))
+    prof = np.unique(np.round(np.vstack(pts), 6), axis=0)
+    return prof[np.argsort(np.arctan2(prof[:, 2], prof[:, 1]))]
+
+
 class Surface:
-    """The full (mirrored) breast surface of one posture, in mm."""
+    """The full breast surface of one posture, in mm: a half model
+    (mirror_x, the default of older files) with its mirror image x -> -x, a
+    full breast as it is."""
 
     def __init__(self, doc, label):
         self.posture = doc["posture"]
@@ -69,17 +85,18 @@ class Surface:
         ref = 1e3 * np.asarray(doc["vertices_ref"], dtype=float).reshape(-1, 3)
         cur = 1e3 * np.asarray(doc["vertices"], dtype=float).reshape(-1, 3)
         disp = np.asarray(doc["fields"]["displacement_mm"], dtype=float)
-        n = len(ref)
-        mirror = np.array([-1.0, 1.0, 1.0])
-        self.ref = np.vstack([ref, ref * mirror])
-        self.cur = np.vstack([cur, cur * mirror])
-        self.disp = np.concatenate([disp, disp])
-        # Mirrored triangles keep pointing outwards with reversed winding.
-        self.tri = np.vstack([tri, tri[:, ::-1] + n])
-        # The neutral skin's curve in the symmetry plane (its side outline).
-        prof = ref[np.abs(ref[:, 0]) < 1e-6]
-        order = np.argsort(np.arctan2(prof[:, 2], prof[:, 1]))
-        self.neutral_profile = prof[order]
+        self.mirrored = bool(doc.get("mirror_x", True))
+        self.ref, self.cur, self.disp, self.tri = ref, cur, disp, tri
+        if self.mirrored:
+            n = len(ref)
+            mirror = np.array([-1.0, 1.0, 1.0])
+            self.ref = np.vstack([ref, ref * mirror])
+            self.cur = np.vstack([cur, cur * mirror])
+            self.disp = np.concatenate([disp, disp])
+            # Mirrored triangles keep pointing outwards with reversed winding.
+            self.tri = np.vstack([tri, tri[:, ::-1] + n])
+        # The neutral skin's curve in the sagittal plane x = 0 (its side outline).
+        self.neutral_profile = sagittal_section(ref, tri)
 
 
 def load_folder(folder, label=None):

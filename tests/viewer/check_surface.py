@@ -2,7 +2,11 @@
 """Checks on surface_<posture>.json (the skin exported by `simulate`).
 
   check_surface.py FILE R H             corners on the neutral cap's sphere, x >= 0,
-                                        outward triangles, displacement field consistent
+                                        outward triangles, displacement field consistent,
+                                        flagged as a half model to mirror (mirror_x)
+  check_surface.py full FILE            a full breast (no symmetry face): corners of both
+                                        signs of x, not flagged to mirror, outward
+                                        triangles, displacement field consistent
   check_surface.py same A B TOL         same surface (as sets of triangles by reference
                                         position) and deformed positions within TOL [m]
 """
@@ -33,9 +37,34 @@ def check_cap(path, R, H):
     normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
     outward = np.einsum("ij,ij->i", normal, p.mean(axis=1) - centre)
     assert (outward > 0).all(), f"{path}: {(outward <= 0).sum()} triangles point inwards"
+    check_displacement(path, d, ref, cur)
+    assert d.get("mirror_x") is True and "half_model" in d, f"{path}: a half model not flagged to mirror"
+
+
+def check_displacement(path, d, ref, cur):
     disp = np.array(d["fields"]["displacement_mm"])
     assert np.abs(disp - 1e3 * np.linalg.norm(cur - ref, axis=1)).max() < 1e-3
     assert disp.max() > 1.0, f"{path}: no displacement (max {disp.max()} mm)"
+
+
+def check_full(path):
+    """A full breast's skin: star-shaped about the origin (the footprint's
+    centre on the chest plane y = 0), so every outward normal has a positive
+    radial part."""
+    d, ref, cur, tri = load(path)
+    assert d.get("mirror_x") is False and "half_model" not in d, \
+        f"{path}: a full breast flagged as a half model to mirror"
+    assert len(tri) > 100, f"{path}: only {len(tri)} triangles"
+    span = ref[:, 0].max() - ref[:, 0].min()
+    assert ref[:, 0].min() < -0.2 * span and ref[:, 0].max() > 0.2 * span, \
+        f"{path}: x from {ref[:, 0].min()} to {ref[:, 0].max()} m: not the full breast"
+    assert ref[:, 1].min() > -1e-9, f"{path}: corners behind the chest plane y = 0"
+    assert sorted(set(tri.ravel())) == list(range(len(ref))), f"{path}: unused or bad indices"
+    p = ref[tri]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    outward = np.einsum("ij,ij->i", normal, p.mean(axis=1))
+    assert (outward > 0).all(), f"{path}: {(outward <= 0).sum()} triangles point inwards"
+    check_displacement(path, d, ref, cur)
 
 
 def check_same(a, b, tol):
@@ -53,7 +82,9 @@ def check_same(a, b, tol):
 
 
 if __name__ == "__main__":
-    if sys.argv[1] == "same":
+    if sys.argv[1] == "full":
+        check_full(sys.argv[2])
+    elif sys.argv[1] == "same":
         check_same(sys.argv[2], sys.argv[3], float(sys.argv[4]))
     else:
         check_cap(sys.argv[1], float(sys.argv[2]), float(sys.argv[3]))

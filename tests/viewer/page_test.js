@@ -2,8 +2,11 @@
 // playwright-core): loads from file:// without console errors or network
 // requests, the WebGL canvas draws non-background pixels, and the posture
 // and pre/post toggles, the colouring and a mouse drag change the picture.
-// Usage: node page_test.js INDEX_HTML   (NODE_PATH must reach playwright-core;
-// BREASTSIM_SCREENSHOT=FILE.png saves the first view)
+// The page draws a half model (mirror_x) with its mirror image (twice its
+// vertices and triangles) and a full breast as it is; MODEL half|full says
+// which the first surface must be (a full breast: x of both signs drawn).
+// Usage: node page_test.js INDEX_HTML [half|full]   (NODE_PATH must reach
+// playwright-core; BREASTSIM_SCREENSHOT=FILE.png saves the first view)
 "use strict";
 const fs = require("fs");
 const os = require("os");
@@ -12,6 +15,11 @@ const { chromium } = require("playwright-core");
 
 const CHROMIUM = process.env.BREASTSIM_CHROMIUM || "/usr/bin/chromium";
 const page_file = path.resolve(process.argv[2]);
+const model = process.argv[3] || "half";
+if (!["half", "full"].includes(model)) {
+  console.error(`MODEL must be 'half' or 'full' (got '${model}')`);
+  process.exit(2);
+}
 let passed = 0;
 
 function check(ok, what) {
@@ -78,6 +86,18 @@ async function main() {
     check(requests.length === 0, "no network requests" + (requests.length ? ": " + requests : ""));
 
     if (process.env.BREASTSIM_SCREENSHOT) await page.screenshot({ path: process.env.BREASTSIM_SCREENSHOT });
+    const geometry = await page.evaluate(() => window.breastsimViewer.drawn());
+    const copies = model === "half" ? 2 : 1;
+    check(geometry.mirrored === (model === "half") &&
+          geometry.vertices === copies * geometry.surfaceVertices &&
+          geometry.triangles === copies * geometry.surfaceTriangles,
+          `a ${model} model is drawn ${model === "half" ? "with its mirror image" : "as it is"} ` +
+          `(${geometry.vertices} vertices, ${geometry.triangles} triangles of the surface's ` +
+          `${geometry.surfaceVertices}, ${geometry.surfaceTriangles})`);
+    const [xmin, xmax] = geometry.xRange;
+    check(xmin < -10 && xmax > 10 && (model === "full" || Math.abs(xmin + xmax) < 1e-3),
+          `the drawn breast spans x = ${xmin.toFixed(1)} to ${xmax.toFixed(1)} mm` +
+          (model === "half" ? " (symmetric)" : ""));
     const drawn = await snapshot(page, "standing");
     check(drawn > 0.03, `canvas draws the breast (${(100 * drawn).toFixed(1)} % non-background)`);
 

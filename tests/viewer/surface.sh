@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The skin surface written by `simulate` (surface_<posture>.json): corners on
-# the neutral cap, outward triangles, P1 and P2, and mpirun -n 2 gives the
+# the neutral cap, outward triangles, P1 and P2, flagged as a half model to
+# mirror; a full breast (a synthetic patient's scan through scan-model) with
+# corners of both signs of x and no mirror flag; and mpirun -n 2 gives the
 # same surface as a serial run.
 # Usage: surface.sh BREASTSIM CASES_DIR
 set -eu
@@ -17,4 +19,16 @@ for order in 1 2; do
     $CHECK same "$work/serial$order/surface_$p.json" "$work/mpi$order/surface_$p.json" 1e-7
   done
 done
-echo "2 passed, 0 failed"
+"$BIN" -q synthetic-patient --volume 400 --ptosis 0.3 --lateral 0.1 --asymmetry 0.15 --mesh-size 0.01 \
+  --out "$work/patient" >/dev/null
+"$BIN" -q scan-model "$work/patient/scan.stl" --units mm --posture standing --mesh-size 0.012 \
+  --out "$work/scan" >/dev/null
+args=(--set postures.names=standing,supine --set output.xdmf=false)
+"$BIN" -q simulate "$work/scan/case.toml" "${args[@]}" --out "$work/full_serial" >/dev/null
+mpirun -n 2 "$BIN" -q simulate "$work/scan/case.toml" "${args[@]}" --out "$work/full_mpi" >/dev/null
+for p in standing supine; do
+  $CHECK full "$work/full_serial/surface_$p.json"
+  $CHECK full "$work/full_mpi/surface_$p.json"
+  $CHECK same "$work/full_serial/surface_$p.json" "$work/full_mpi/surface_$p.json" 1e-7
+done
+echo "3 passed, 0 failed"

@@ -1,10 +1,11 @@
-// breastsim 3D page: the full breast (the half model mirrored in x) of each
-// posture, coloured by the displacement from the neutral shape [mm].
+// breastsim 3D page: the full breast of each posture (a half model, x >= 0,
+// with its mirror image x -> -x; a full breast, e.g. a scan, as it is),
+// coloured by the displacement from the neutral shape [mm].
 // Data: window.BREASTSIM_DATA = {sets: [{label, surfaces: [{posture,
-// theta_deg, vertices, vertices_ref, triangles, fields: {<name>_mm: [...]}}]}]}
-// (lengths in m, half model x >= 0); every per-vertex field (displacement_mm,
-// or e.g. a residual) can colour the surface. Exposes window.breastsimViewer
-// for tests.
+// theta_deg, mirror_x, vertices, vertices_ref, triangles, fields:
+// {<name>_mm: [...]}}]}]} (lengths in m; mirror_x absent: a half model);
+// every per-vertex field (displacement_mm, or e.g. a residual) can colour
+// the surface. Exposes window.breastsimViewer for tests.
 (function () {
   "use strict";
   const data = window.BREASTSIM_DATA;
@@ -29,23 +30,25 @@
         for (const v of values) vmax[name] = Math.max(vmax[name] || 1e-6, v);
   const fieldLabel = name => name.replace(/_mm$/, " [mm]").replace(/_/g, " ");
 
-  // Full breast: the half surface and its mirror image (x -> -x, reversed winding).
+  // Full breast: a half surface and its mirror image (x -> -x, reversed
+  // winding), or a full surface as it is.
+  const mirrored = surf => surf.mirror_x !== false;
   function fullGeometry(surf, key, field) {
     const v = surf[key], tri = surf.triangles, values = field && surf.fields[field];
-    const n = v.length / 3;
-    const pos = new Float32Array(6 * n), col = new Float32Array(6 * n);
+    const n = v.length / 3, copies = mirrored(surf) ? 2 : 1;
+    const pos = new Float32Array(3 * copies * n), col = new Float32Array(3 * copies * n);
     for (let i = 0; i < n; ++i) {
-      for (let c = 0; c < 3; ++c) {
-        pos[3 * i + c] = 1e3 * v[3 * i + c];
-        pos[3 * (n + i) + c] = (c === 0 ? -1e3 : 1e3) * v[3 * i + c];
-      }
       const rgb = values ? colormap(values[i] / vmax[field]) : [0.93, 0.76, 0.66];
-      for (let c = 0; c < 3; ++c) col[3 * i + c] = col[3 * (n + i) + c] = rgb[c];
+      for (let k = 0; k < copies; ++k)
+        for (let c = 0; c < 3; ++c) {
+          pos[3 * (k * n + i) + c] = (k === 1 && c === 0 ? -1e3 : 1e3) * v[3 * i + c];
+          col[3 * (k * n + i) + c] = rgb[c];
+        }
     }
-    const index = new Uint32Array(2 * tri.length);
+    const index = new Uint32Array(copies * tri.length);
     for (let t = 0; t < tri.length; t += 3) {
       index.set([tri[t], tri[t + 1], tri[t + 2]], t);
-      index.set([n + tri[t], n + tri[t + 2], n + tri[t + 1]], tri.length + t);
+      if (copies === 2) index.set([n + tri[t], n + tri[t + 2], n + tri[t + 1]], tri.length + t);
     }
     const g = new THREE.BufferGeometry();
     g.setAttribute("position", new THREE.BufferAttribute(pos, 3));
@@ -177,5 +180,16 @@
 
   refreshButtons();
   rebuild();
-  window.breastsimViewer = { ready: true, state, frames: () => frames };
+  // For tests: the drawn surface's vertex and triangle counts and the
+  // current surface's own (a mirrored half draws twice its own).
+  function drawn() {
+    const surf = currentSurface(), g = mesh && mesh.geometry;
+    return { mirrored: surf ? mirrored(surf) : null,
+             vertices: g ? g.getAttribute("position").count : 0,
+             triangles: g ? g.index.count / 3 : 0,
+             surfaceVertices: surf ? surf.vertices.length / 3 : 0,
+             surfaceTriangles: surf ? surf.triangles.length / 3 : 0,
+             xRange: g ? (g.computeBoundingBox(), [g.boundingBox.min.x, g.boundingBox.max.x]) : null };
+  }
+  window.breastsimViewer = { ready: true, state, frames: () => frames, drawn };
 })();
