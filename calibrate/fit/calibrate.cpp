@@ -2,6 +2,7 @@
 #include "geometry_options.hpp"
 #include "calibration_report.hpp"
 #include "checkpoint.hpp"
+#include "errors.hpp"
 #include "log.hpp"
 #include "misfit.hpp"
 #include "timer.hpp"
@@ -173,6 +174,28 @@ Uncertainty uncertainty_at(Run& run, const OptimizerOptions& oo, const std::vect
               reduced_chi2, std::sqrt(variance_factor));
   return gauss_newton_uncertainty(J, y, run.names, variance_factor);
 }
+
+/// A case on a mesh file (a scan's, a neutral state's: full or half) is
+/// calibrated on that mesh as it is: its shape is not the cap's R, H, and it
+/// has no finer mesh for the model-error correction.
+void check_mesh_file_case(const Config& start, const std::vector<FitParameter>& fit,
+                          const CalibrateOptions& o)
+{
+  const std::string mesh_file = HalfCapSpec::from(start).mesh_file;
+  if (mesh_file.empty())
+    return;
+  for (const auto& p : fit)
+    if (p.role == generated::FitRole::shape)
+      throw InputError(fmt::format(
+          "--fit: '{}' ({}) morphs the parametric cap, but the case's mesh is key "
+          "'geometry.mesh_file' = \"{}\", whose shape is fixed: fit material parameters only",
+          p.name, p.key, mesh_file));
+  if (o.correction_mesh_size > 0)
+    throw InputError(fmt::format("--correction-mesh-size = {}: the case's mesh is key "
+                                 "'geometry.mesh_file' = \"{}\", which is not remeshed finer; "
+                                 "leave it at 0",
+                                 o.correction_mesh_size, mesh_file));
+}
 } // namespace
 
 CalibrationResult calibrate(const Config& start, const Measurements& data,
@@ -180,7 +203,7 @@ CalibrationResult calibrate(const Config& start, const Measurements& data,
                             MPI_Comm comm)
 {
   const Stopwatch stopwatch("calibrate");
-  HalfCapSpec::from(start).require_parametric_cap("calibrate (R and H morph the cap)");
+  check_mesh_file_case(start, fit, o);
   check_algorithm(o.optimizer.algorithm);
   check_identifiable(fit);
   Checkpoint cp;

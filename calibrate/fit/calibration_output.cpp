@@ -7,11 +7,24 @@
 
 namespace breastsim::calibration
 {
+namespace
+{
+/// The calibrated case as `simulate` runs it from anywhere: its mesh file
+/// (resolved against the starting case's folder) made absolute.
+Config runnable_case(Config c)
+{
+  const std::string mesh_file = c.text("geometry.mesh_file");
+  if (!mesh_file.empty())
+    c.set("geometry.mesh_file", std::filesystem::absolute(mesh_file).lexically_normal().string());
+  return c;
+}
+} // namespace
+
 void write_calibration(const CalibrationResult& r, const OutputTarget& out, MPI_Comm comm,
                        const CalibrationOutputOptions& o)
 {
   OutputDir dir(out, comm);
-  write_text(dir.path() / "calibrated.toml", r.calibrated.to_toml(), comm);
+  write_text(dir.path() / "calibrated.toml", runnable_case(r.calibrated).to_toml(), comm);
   write_json(dir.path() / "report.json", r.report, comm);
   for (const auto& s : r.surfaces)
     write_json(dir.path() / ("surface_" + s["posture"].get<std::string>() + ".json"), s, comm);

@@ -26,7 +26,8 @@ void ForwardModel::attach_solver(const Config& c)
   _newton.reset();
   _probe.reset();
   _newton = std::make_unique<NewtonSolver>(*_model, NewtonOptions::from(c));
-  _probe = std::make_unique<ObservableProbe>(*_model, std::array<double, 3>{0.0, _H, 0.0});
+  // The nipple node (0, H, nipple_z): a morphed cap's apex moves with H.
+  _probe = std::make_unique<ObservableProbe>(*_model, std::array<double, 3>{0.0, _H, _nipple_z});
 }
 
 void ForwardModel::rebuild(const Config& c)
@@ -37,6 +38,7 @@ void ForwardModel::rebuild(const Config& c)
   _model = std::make_unique<Model>(build_neutral_mesh(c, _comm), Constraints{true, o.fixed_base});
   _R = _R0 = o.geometry.R;
   _H = _H0 = o.geometry.H;
+  _nipple_z = o.geometry.nipple_z;
   _mesh_size = o.geometry.mesh_size;
   _fixed_base = o.fixed_base;
   _order = o.geometry.order;

@@ -52,6 +52,7 @@ private:
   bool _morph;
   double _R = -1, _H = -1;            ///< current neutral shape of the mesh
   double _R0 = -1, _H0 = -1;          ///< shape the mesh was generated for
+  double _nipple_z = 0;               ///< z of the nipple node (a user mesh's; 0 on the cap)
   std::vector<double> _X0;            ///< geometry nodes as generated (local, (n, 3))
   double _mesh_size = -1;
   int _order = -1, _refinements = -1;

@@ -80,7 +80,7 @@ Recording synthetic_recording(const Config& c, const RecordingOptions& o, MPI_Co
   Model model(build_neutral_mesh(truth, comm), Constraints{true, truth_case.fixed_base});
   apply_parameters(truth, model);
   NewtonSolver newton(model, NewtonOptions::from(truth));
-  ObservableProbe probe(model, {0.0, truth_case.geometry.H, 0.0});
+  ObservableProbe probe(model, truth_case.geometry.nipple());
   std::mt19937 gen(o.seed); // same sequence on every rank; used on rank 0
   std::normal_distribution<double> noise(0.0, o.noise);
   int rank;

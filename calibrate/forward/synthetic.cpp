@@ -36,7 +36,7 @@ nlohmann::json synthetic_measurements(const Config& truth, const SyntheticOption
   Model model(build_neutral_mesh(truth, comm), Constraints{true, truth_case.fixed_base});
   apply_parameters(truth, model);
   NewtonSolver newton(model, NewtonOptions::from(truth));
-  ObservableProbe probe(model, {0.0, truth_case.geometry.H, 0.0});
+  ObservableProbe probe(model, truth_case.geometry.nipple());
   // The same seed on every rank gives the same noise everywhere.
   std::mt19937 gen(o.seed);
   std::normal_distribution<double> noise(0.0, o.noise);

@@ -5,7 +5,11 @@
 # scan -> scan-model -> neutral-state -> simulate and reproduce the scanned
 # skin (bench/scan_compare.py: loaded_rms_mm < 0.1 off the chest, the
 # reference within 1 mm RMS of the truth, 0.5 mm with the true chest wall
-# given by --chest).
+# given by --chest). The case scan-model writes and the case.reference.toml
+# neutral-state writes are accepted by measure and calibrate (mu recovered
+# from noiseless measurements at 600 Pa; the cap's shape keys and a finer
+# correction mesh refused, exit 2), the calibrated case by simulate, and
+# view draws a scan case's result.
 # Usage: scan_model.sh BREASTSIM SOURCE_DIR
 set -eu -o pipefail
 BIN="$1"; SRC="$2"; PY=/usr/bin/python3
@@ -88,6 +92,35 @@ trip() { # NAME SCAN TRUTH [SCAN-MODEL OPTIONS...]
 }
 trip patient patient/scan.stl patient
 trip chest patient/scan.stl patient --chest patient/chest.stl
+
+for case in patient_model/case.toml patient_neutral/case.reference.toml; do
+  name=$(basename "$(dirname "$case")")
+  "$BIN" -q measure "$case" --set tissue.mu=600 --set postures.names=standing,supine --noise 0 --sigma 0.0005 \
+    --out "$name.measured.json" >/dev/null
+  "$BIN" -q calibrate "$name.measured.json" --case "$case" --fit mu --out "${name}_cal" >/dev/null
+  $PY - "${name}_cal/report.json" <<'PY'
+import json, sys
+mu = [p for p in json.load(open(sys.argv[1]))["fit"] if p["name"] == "mu"][0]["fitted"]
+if abs(mu / 600 - 1) > 0.01:
+    sys.exit("FAIL: calibrate on %s: mu = %g Pa, not 600" % (sys.argv[1], mu))
+PY
+  "$BIN" -q simulate "${name}_cal/calibrated.toml" --set postures.names=standing --set output.xdmf=false \
+    --out "${name}_cal_simulated" >/dev/null
+done
+set +e
+"$BIN" -q calibrate patient_model.measured.json --case patient_model/case.toml --fit mu,H --out bad_fit_H >fit_H.log 2>&1
+code_H=$?
+"$BIN" -q calibrate patient_model.measured.json --case patient_model/case.toml --fit mu --correction-mesh-size 0.005 \
+  --out bad_correction >correction.log 2>&1
+code_c=$?
+set -e
+[ "$code_H" = 2 ] && grep -q "geometry.mesh_file" fit_H.log && [ ! -e bad_fit_H ] \
+  || { echo "FAIL: calibrate --fit H of a scan case: exit $code_H"; cat fit_H.log; exit 1; }
+[ "$code_c" = 2 ] && grep -q -- "--correction-mesh-size" correction.log && [ ! -e bad_correction ] \
+  || { echo "FAIL: calibrate --correction-mesh-size of a scan case: exit $code_c"; cat correction.log; exit 1; }
+"$BIN" -q view patient_forward --size 400x300 >/dev/null
+[ -s patient_forward/index.html ] && [ -s patient_forward/view_standing.png ] \
+  || { echo "FAIL: view wrote no page or picture of the scan case"; exit 1; }
 $PY - "$SRC" <<'PY'
 import math, struct, sys
 R, H = 70.0, 60.0
