@@ -119,4 +119,11 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   e.lr_continuum = 200;
   judge(e, o, 0.5e-3);
   EXPECT_TRUE(e.failed.empty());
+  e.misfit_before = 1400; // LR 400 explains 29 % of it: below the default 30 %
+  judge(e, o, 0.5e-3);
+  ASSERT_EQ(e.failed.size(), 1u);
+  EXPECT_NE(e.failed[0].find("explains 29 % of the misfit"), std::string::npos) << e.failed[0];
+  o.min_misfit_share = 0;
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty());
 }

@@ -34,6 +34,9 @@ void check_options(const DiagnoseOptions& o)
                                  o.mesh_ratio));
   if (!(o.min_effect >= 0 && o.min_effect <= 5))
     throw InputError(fmt::format("--min-effect = {} is out of range: allowed [0, 5]", o.min_effect));
+  if (!(o.min_misfit_share >= 0 && o.min_misfit_share < 1))
+    throw InputError(fmt::format("--min-misfit-share = {} is out of range: allowed [0, 1) (0: off)",
+                                 o.min_misfit_share));
   if (!(o.refinement_order >= 0 && o.refinement_order <= 4))
     throw InputError(fmt::format("--refinement-order = {} is out of range: allowed [0, 4] (0: off)",
                                  o.refinement_order));
@@ -130,6 +133,7 @@ Evidence cheap_evidence(const Search& s, const Candidate& cand, const FitState& 
   e.candidate = cand.name;
   e.lr = lr;
   e.critical = critical;
+  e.misfit_before = s.state.chi2 - s.state.dof;
   effect_size(s.state, after, e);
   e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, e.effect_rms_mm_all);
   const auto without = held_out_chi2(s.state, s.rec), with = held_out_chi2(after, s.rec);

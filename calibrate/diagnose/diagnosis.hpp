@@ -40,6 +40,13 @@ struct DiagnoseOptions
   /// Held-out postures: an accepted term must improve the linearised
   /// prediction of the postures it was not fitted on (sum of chi2 gains > 0).
   bool held_out_check = true;
+  /// Model-form share: an accepted term must explain at least this fraction
+  /// of the systematic misfit it is tested against, LR >= share (chi2 - dof)
+  /// of the model before it (0: off). The misfit left by the model so far
+  /// estimates its model-form error (the shape error of the terms it has, a
+  /// physics no candidate has, the mesh's error beyond the noise floor); a
+  /// term that removes only a small part of it stands in for that error.
+  double min_misfit_share = 0.3;
   /// MPI ranks per forward solve: the Jacobian columns and candidate probes
   /// are solved by groups of this many ranks side by side (0: all ranks).
   int ranks_per_case = 0;
@@ -55,6 +62,7 @@ struct Evidence
   double effect_rms_mm_all = 0;                ///< RMS over all points
   double effect_at_null_edge_mm = 0;           ///< effect at the interval end nearest q = 0
   std::vector<double> held_out_gain;           ///< per posture: chi2_k without - with the term
+  double misfit_before = 0;                    ///< chi2 - dof of the model before the term
   bool refinement_checked = false;
   double lr_fine = 0, lr_continuum = 0;        ///< refinement check (refinement_checked)
   std::vector<std::string> failed;             ///< reasons for rejection (empty: holds every rule checked)

@@ -174,6 +174,13 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
   if (o.held_out_check && !e.held_out_gain.empty() && !(gain > 0))
     e.failed.push_back(fmt::format("it does not improve the prediction of held-out postures "
                                    "(chi2 gain {:.1f})", gain));
+  // Model-form share: LR >= share (chi2 - dof) of the model before the term.
+  const double misfit_share = e.misfit_before > 0 ? e.lr / e.misfit_before : 1.0;
+  if (o.min_misfit_share > 0 && misfit_share < o.min_misfit_share)
+    e.failed.push_back(fmt::format("it explains {:.0f} % of the misfit it is tested against (LR {:.1f} of "
+                                   "chi2 - dof = {:.1f}), less than {:g} %: the rest has a shape no "
+                                   "candidate has, and the term would stand in for it",
+                                   100 * misfit_share, e.lr, e.misfit_before, 100 * o.min_misfit_share));
   if (e.refinement_checked && !(e.lr_fine > e.critical && e.lr_continuum > e.critical))
     e.failed.push_back(fmt::format("its LR does not survive refinement: {:.1f} on the finer mesh, "
                                    "{:.1f} extrapolated to the continuum, against {:.1f}",
@@ -190,6 +197,9 @@ std::string evidence_text(const Evidence& e)
   t += "; held-out chi2 gain per posture";
   for (std::size_t p = 0; p < e.held_out_gain.size(); ++p)
     t += fmt::format("{} {:.1f}", p ? "," : "", e.held_out_gain[p]);
+  if (e.misfit_before > 0)
+    t += fmt::format("; {:.0f} % of the misfit before it (chi2 - dof = {:.1f})", 100 * e.lr / e.misfit_before,
+                     e.misfit_before);
   if (e.refinement_checked)
     t += fmt::format("; LR on the finer mesh {:.1f}, in the continuum {:.1f}", e.lr_fine, e.lr_continuum);
   if (e.failed.empty())
@@ -212,6 +222,7 @@ nlohmann::json to_json(const Evidence& e)
                       {"effect_rms_mm_all", e.effect_rms_mm_all},
                       {"effect_at_null_edge_mm", e.effect_at_null_edge_mm},
                       {"held_out_chi2_gain", e.held_out_gain},
+                      {"misfit_before", e.misfit_before},
                       {"accepted", e.accepted},
                       {"rejected_because", e.failed}};
   if (e.refinement_checked)

@@ -49,6 +49,9 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
                                                    "this fraction of the noise (RMS), also at its "
                                                    "interval's end (0: off)")->capture_default_str();
+  app->add_option("--min-misfit-share", o->d.min_misfit_share,
+                  "an accepted term must explain this fraction of the misfit (chi2 - dof) of the "
+                  "model before it (0: off)")->capture_default_str();
   app->add_option("--refinement-order", o->d.refinement_order,
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();
