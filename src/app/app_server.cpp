@@ -4,8 +4,10 @@
 #include "http_reply.hpp"
 #include "job_api.hpp"
 #include "plan_api.hpp"
+#include "recording_api.hpp"
 #include "report_api.hpp"
 #include "request_pool.hpp"
+#include "scan_upload.hpp"
 #include "static_files.hpp"
 #include <fmt/format.h>
 #include <fstream>
@@ -85,6 +87,31 @@ void add_plan_routes(httplib::Server& server)
   server.Post("/api/measurements/check", [](const httplib::Request& req, httplib::Response& res) {
     with_json_body(req, res, check_measurements);
   });
+  server.Post("/api/recording/check", [](const httplib::Request& req, httplib::Response& res) {
+    with_json_body(req, res, check_recording);
+  });
+}
+
+/// Before a POST body is read: every POST is JSON, but the scan upload's
+/// bytes (application/octet-stream); neither is a type a cross-site form can
+/// send without a preflight, which is never granted. Bodies above --max-body
+/// (--max-upload for the scan upload) get 413, a body of unstated length 411.
+bool refuse_body(const httplib::Request& req, httplib::Response& res, const ServeOptions& o)
+{
+  if (req.method != "POST")
+    return false;
+  const bool upload = req.path == "/api/scans";
+  if (!upload && req.get_header_value("Content-Type").rfind("application/json", 0) != 0)
+    reply_error(res, 415, "send the request body as Content-Type: application/json");
+  else if (!req.has_header("Content-Length") && req.has_header("Transfer-Encoding"))
+    reply_error(res, 411, "send the request body with its Content-Length");
+  else if (req.get_header_value<std::uint64_t>("Content-Length") > (upload ? o.max_upload : o.max_body))
+    reply_error(res, 413, upload ? fmt::format("the scan file is too large: at most {} bytes (--max-upload)", o.max_upload)
+                                 : std::string("the request body is too large"));
+  else
+    return false;
+  res.set_header("Connection", "close"); // the body is not read
+  return true;
 }
 
 /// Limits, headers and the handlers of errors and exceptions.
@@ -92,7 +119,7 @@ void configure(httplib::Server& server, const ServeOptions& o, const int& port)
 {
   const int threads = o.http_threads;
   server.new_task_queue = [threads] { return new RequestPool(threads, 256); };
-  server.set_payload_max_length(o.max_body);
+  server.set_payload_max_length(std::max(o.max_body, o.max_upload)); // the rest: refuse_body below
   server.set_read_timeout(5, 0);
   server.set_write_timeout(5, 0);
   server.set_tcp_nodelay(true); // a reply's headers and body leave at once (no 40 ms delayed ACK)
@@ -102,19 +129,14 @@ void configure(httplib::Server& server, const ServeOptions& o, const int& port)
                               {"X-Frame-Options", "DENY"},
                               {"Cache-Control", "no-store"}});
   const bool loopback = !o.host_given || is_loopback(o.host);
-  server.set_pre_routing_handler([loopback, &port](const httplib::Request& req, httplib::Response& res) {
+  server.set_pre_routing_handler([loopback, &port, o](const httplib::Request& req, httplib::Response& res) {
     if (loopback && !host_header_allowed(req.get_header_value("Host"), port))
     {
       reply_error(res, 403, "this server answers only requests addressed to 127.0.0.1 or localhost");
       return httplib::Server::HandlerResponse::Handled;
     }
-    // Every POST is JSON: a cross-site form (text/plain, no preflight) cannot post.
-    if (req.method == "POST" && req.get_header_value("Content-Type").rfind("application/json", 0) != 0)
-    {
-      reply_error(res, 415, "send the request body as Content-Type: application/json");
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    return httplib::Server::HandlerResponse::Unhandled;
+    return refuse_body(req, res, o) ? httplib::Server::HandlerResponse::Handled
+                                    : httplib::Server::HandlerResponse::Unhandled;
   });
   server.set_error_handler(httplib::Server::HandlerWithResponse(
       [](const httplib::Request&, httplib::Response& res) {
@@ -164,6 +186,7 @@ int serve(const ServeOptions& o)
   add_plan_routes(server);
   add_job_routes(server, store, queue);
   add_report_routes(server, store);
+  add_scan_routes(server, store, queue, data);
   const std::string shown = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
   std::cout << fmt::format("breastsim serve: listening on http://{}:{}/ (data {}, {} worker{})", shown,
                            port, data.string(), o.workers, o.workers == 1 ? "" : "s")

@@ -7,6 +7,7 @@
 #include "output_target.hpp"
 #include "progress_channel.hpp"
 #include "result_summary.hpp"
+#include "upload_summaries.hpp"
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -36,6 +37,17 @@ nlohmann::json outcome_of(const fs::path& folder, int exit_code)
           {"error", exit_code > 128 ? "the job process ended with signal " + std::to_string(exit_code - 128)
                                     : "the job process ended with exit code " + std::to_string(exit_code) +
                                           " (its output: output.txt in the job folder)"}};
+}
+/// The summary of a finished job: a recording's calibration (diagnosis.json)
+/// and a scan job by their own readers, the rest from result/.
+nlohmann::json summary_of(const JobRecord& r, const fs::path& folder)
+{
+  const Config c = case_from_overrides(r.overrides);
+  if (r.kind == "scan")
+    return summarize_scan(c, folder);
+  if (r.kind == "calibrate" && fs::exists(folder / "result" / "diagnosis.json"))
+    return summarize_recording_fit(c, folder / "result");
+  return summarize_result(r.kind, c, folder / "result");
 }
 } // namespace
 
@@ -220,8 +232,10 @@ void JobQueue::finish(const std::string& id, int exit_code, bool cancelled)
     result.state = JobState::done;
     result.progress = 1;
     result.stage = "finished";
-    result.summary = summarize_result(record.kind, case_from_overrides(record.overrides), folder / "result");
+    result.summary = summary_of(record, folder);
     result.files = result_files(folder);
+    if (record.kind == "scan")
+      result.files.merge(scan_files());
     if (fs::exists(folder / progress_file))
       result.files[progress_file] = progress_file;
   }

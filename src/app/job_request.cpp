@@ -4,6 +4,7 @@
 #include "fit_parameters.hpp"
 #include "measurements.hpp"
 #include "plan_api.hpp"
+#include "recording_api.hpp"
 #include "sweep_request.hpp"
 #include <set>
 
@@ -24,9 +25,14 @@ void check_fields(const nlohmann::json& body, const std::set<std::string>& allow
 void check_calibration(nlohmann::json& request)
 {
   const Config start = case_from_overrides(request["overrides"]);
-  if (!request.contains("measurements"))
-    throw InputError("field 'measurements' is missing: the measurement document to fit");
-  calibration::parse_measurements(request["measurements"], "measurements");
+  // The data: point measurements or a 3D surface recording, as `calibrate` reads them.
+  if (request.contains("measurements") == request.contains("recording"))
+    throw InputError("give one of the fields 'measurements' (the measurement document to fit) or "
+                     "'recording' (a 3D surface recording, breastsim-recording/1)");
+  if (request.contains("recording"))
+    check_recording(request["recording"]);
+  else
+    calibration::parse_measurements(request["measurements"], "measurements");
   if (!request.contains("fit"))
     request["fit"] = calibration::CalibrateRequest{}.fit;
   if (!request["fit"].is_string())
@@ -53,7 +59,7 @@ nlohmann::json checked_job_request(const nlohmann::json& body)
     request["overrides"] = nlohmann::json::object();
   if (kind == "calibrate")
   {
-    check_fields(body, {"kind", "overrides", "measurements", "fit", "max_evals"}, "calibrate");
+    check_fields(body, {"kind", "overrides", "measurements", "recording", "fit", "max_evals"}, "calibrate");
     check_calibration(request);
     return request;
   }

@@ -1,8 +1,8 @@
 #pragma once
 // A job request, checked at the edge before anything is queued:
 //   {"kind": "simulate" | "surgery", "overrides": {key: value}}
-//   {"kind": "calibrate", "overrides": {...}, "measurements": {document},
-//    "fit": "mu,c", "max_evals": 40}
+//   {"kind": "calibrate", "overrides": {...}, "measurements": {document}
+//    or "recording": {breastsim-recording/1}, "fit": "mu,c", "max_evals": 40}
 //   {"kind": "sweep", "overrides": {...}, "vary": {"a": [...], "h": [...]}}
 // with the library's checks and messages (case keys, the incision on the
 // cap, the measurements as `calibrate` reads them, the --fit names).

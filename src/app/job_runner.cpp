@@ -7,6 +7,7 @@
 #include "job_id.hpp"
 #include "job_request.hpp"
 #include "progress_channel.hpp"
+#include "scan_job.hpp"
 #include "simulate.hpp"
 #include "surgery.hpp"
 #include "sweep_request.hpp"
@@ -43,14 +44,16 @@ void log_into(const fs::path& file)
   spdlog::set_level(spdlog::level::info);
 }
 
-/// A calibration: the measurements into the job's own measurements.json,
-/// then the library's calibrate job with its checkpoint in the job folder.
+/// A calibration: the measurements (or the recording) into the job's own
+/// measurements.json (recording.json), then the library's calibrate job
+/// with its checkpoint in the job folder.
 void calibrate(const fs::path& folder, const nlohmann::json& request, const Config& c, OutputRules rules)
 {
-  const fs::path data = folder / "measurements.json";
+  const bool recording = request.contains("recording");
+  const fs::path data = folder / (recording ? "recording.json" : "measurements.json");
   {
     std::ofstream f(data, std::ios::trunc);
-    f << request.at("measurements").dump(2) << "\n";
+    f << request.at(recording ? "recording" : "measurements").dump(2) << "\n";
   }
   const auto r = calibrate_request(request, data);
   calibration::check_calibrate_request(r, c);
@@ -78,6 +81,8 @@ void run(const fs::path& folder)
   const std::string kind = request.at("kind");
   if (kind == "calibrate")
     return calibrate(folder, request, c, rules);
+  if (kind == "scan")
+    return run_scan_job(folder, request, rules, progress_into(folder));
   const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
   const Progress progress = progress_into(folder); // the structured progress channel
   if (kind == "surgery")
@@ -87,7 +92,7 @@ void run(const fs::path& folder)
   else if (kind == "sweep")
     sweep(c, sweep_grid(request.at("vary"), c), target, MPI_COMM_WORLD, 0, progress);
   else
-    throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate, sweep");
+    throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate, sweep, scan");
 }
 } // namespace
 

@@ -72,9 +72,11 @@ JobRecord JobStore::create(const nlohmann::json& request)
   JobRecord r;
   r.kind = request.at("kind");
   r.overrides = request.value("overrides", nlohmann::json::object());
-  for (const char* option : {"fit", "max_evals", "vary"})
+  for (const char* option : {"fit", "max_evals", "vary", "scan"})
     if (request.contains(option))
       r.options[option] = request.at(option);
+  if (r.kind == "calibrate")
+    r.options["data"] = request.contains("recording") ? "recording" : "measurements";
   r.created = utc_now();
   r.files = {{"log.txt", "log.txt"}}; // readable while the job runs
   std::lock_guard<std::mutex> lock(_mutex);

@@ -19,6 +19,9 @@ void check_serve_options(const ServeOptions& o)
   if (o.max_body < 1024 || o.max_body > (64u << 20))
     throw InputError(fmt::format("--max-body = {} is out of range: allowed [1024, {}] bytes", o.max_body,
                                  64u << 20));
+  if (o.max_upload < 1024 || o.max_upload > (1024u << 20))
+    throw InputError(fmt::format("--max-upload = {} is out of range: allowed [1024, {}] bytes", o.max_upload,
+                                 1024u << 20));
   if (o.host.empty())
     throw InputError("--host is empty: give an address, e.g. 127.0.0.1");
   if (!o.host_given && !is_loopback(o.host))

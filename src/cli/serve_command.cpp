@@ -28,6 +28,8 @@ Command add_serve_command(CLI::App& root)
                   "folder of the jobs and their results (default results/serve; kept across restarts)");
   sub->add_option("--workers", o->serve.workers, "jobs solved at the same time (default 1, at most 16)");
   sub->add_option("--max-body", o->serve.max_body, "largest request body in bytes (default 1048576)");
+  sub->add_option("--max-upload", o->serve.max_upload,
+                  "largest scan file uploaded to the page in bytes (default 67108864)");
   sub->add_option("--run-job", o->run_job, "run one job of the server (internal)")->group("");
   return {sub, [o, host]()
           {

@@ -1,0 +1,41 @@
+#include "scan_job.hpp"
+#include "config.hpp"
+#include "neutral_state.hpp"
+#include "posture.hpp"
+#include "scan_model_job.hpp"
+#include "scan_readers.hpp"
+#include "simulate.hpp"
+#include <mpi.h>
+#include <string>
+#include <vector>
+
+namespace breastsim::app
+{
+namespace fs = std::filesystem;
+
+void run_scan_job(const fs::path& folder, const nlohmann::json& request, const OutputRules& rules,
+                  const Progress& progress)
+{
+  const auto& scan = request.at("scan");
+  ScanModelRequest r;
+  r.skin = folder / scan.at("file").get<std::string>();
+  r.options.units = scan::parse_units(scan.at("units").get<std::string>(), "units");
+  r.options.mesh.mesh_size = scan.at("mesh_size").get<double>(); // 0: by the breast's volume
+  r.posture = named_posture(scan.at("posture").get<std::string>());
+  OutputRules inputs = rules;
+  inputs.inputs.push_back(r.skin);
+  progress.report("scan model: fit and mesh of the skin", 0);
+  scan_model(r, OutputTarget::claim((folder / "model").string(), inputs, MPI_COMM_WORLD), MPI_COMM_WORLD);
+
+  progress.report("neutral state: the stress-free breast of the scan", 0.3);
+  const Config loaded = Config::from_file(folder / "model" / "case.toml");
+  neutral_state(loaded, r.posture, InverseOptions{},
+                OutputTarget::claim((folder / "neutral").string(), rules, MPI_COMM_WORLD), MPI_COMM_WORLD);
+
+  Config neutral = Config::from_file(folder / "neutral" / "case.reference.toml");
+  neutral.set("postures.names", std::vector<std::string>(std::begin(scan_postures), std::end(scan_postures)));
+  neutral.validate();
+  simulate(neutral, OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD), MPI_COMM_WORLD,
+           progress.part(0.6, 1.0, "simulate: "));
+}
+} // namespace breastsim::app
