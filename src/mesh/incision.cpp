@@ -9,8 +9,8 @@ namespace breastsim::meshes
 namespace
 {
 double dot(const Point& a, const Point& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+} // namespace
 
-/// Half-space {n . p < c} as an OCC box of size L: built along e_x and rotated.
 int half_space_box(const Point& n, double c, double L)
 {
   namespace occ = gmsh::model::occ;
@@ -25,7 +25,6 @@ int half_space_box(const Point& n, double c, double L)
   occ::translate({{3, box}}, c * n[0], c * n[1], c * n[2]);
   return box;
 }
-} // namespace
 
 bool IncisionGeometry::resected(const Point& p) const
 {
@@ -162,16 +161,17 @@ double tag_faces(const gmsh::vectorpair& vols, const IncisionGeometry& g, double
   return volume;
 }
 
-void set_mesh_options(const HalfCapSpec& cap)
+} // namespace
+
+void set_incision_mesh_options(double mesh_size)
 {
-  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * cap.mesh_size);
-  gmsh::option::setNumber("Mesh.MeshSizeMax", cap.mesh_size);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * mesh_size);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", mesh_size);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.Algorithm3D", 1);
   gmsh::option::setNumber("Mesh.Optimize", 1);
   gmsh::option::setNumber("General.NumThreads", 1);
 }
-} // namespace
 
 TaggedMesh mesh_incised_cap(const HalfCapSpec& cap, const IncisionSpec& inc,
                             const std::array<int, 5>& tags, double* cad_volume)
@@ -191,7 +191,7 @@ TaggedMesh mesh_incised_cap(const HalfCapSpec& cap, const IncisionSpec& inc,
   if (!p1 || !p2)
     throw InputError("the incision planes miss the breast (no cut face on P1 or P2): check incision.a_deg, "
                      "incision.h, incision.d");
-  set_mesh_options(cap);
+  set_incision_mesh_options(cap.mesh_size);
   if (cad_volume)
     *cad_volume = volume;
   return extract_tagged_mesh(cap.order, cap.refinements);
@@ -214,7 +214,7 @@ TaggedMesh mesh_resected_part(const HalfCapSpec& cap, const IncisionSpec& inc,
     throw InputError("the incision removes nothing: check incision.a_deg, incision.s, incision.h, incision.d");
   bool p1 = false, p2 = false;
   const double volume = tag_faces(resected, g, sphere_radius(cap.R, cap.H), tags, p1, p2);
-  set_mesh_options(cap);
+  set_incision_mesh_options(cap.mesh_size);
   if (cad_volume)
     *cad_volume = volume;
   return extract_tagged_mesh(cap.order, cap.refinements);

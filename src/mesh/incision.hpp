@@ -29,6 +29,12 @@ struct IncisionGeometry
 /// a point does not exist on the cap or the cut is empty or everything.
 IncisionGeometry incision_geometry(const HalfCapSpec& cap, const IncisionSpec& inc);
 
+/// The half-space {n . p < c} (n unit) as an OCC box of size L (current gmsh model).
+int half_space_box(const Point& n, double c, double L);
+
+/// gmsh's mesh options of the incised bodies: sizes in [mesh_size / 2, mesh_size], Delaunay, one thread.
+void set_incision_mesh_options(double mesh_size);
+
 /// Mesh the remaining body: physical surface groups base, skin, symmetry,
 /// suture_abd (on P1) and suture_bcd (on P2) with the given tag values
 /// {base, skin, symmetry, suture_abd, suture_bcd}. Also returns the remaining
