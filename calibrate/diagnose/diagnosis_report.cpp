@@ -176,8 +176,8 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
             : fmt::format("the remaining residual is still above the noise level (chi2/dof = {:.3f}, "
                           "p = {:.2g}): more is missing than the library explains.",
                           last.chi2 / last.dof, last.gof_p);
-  return fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm); {}",
-                     what, rms_all(first), rms_all(last), noise_mm, rest);
+  return fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm); {}{}",
+                     what, rms_all(first), rms_all(last), noise_mm, rest, refused_text(d));
 }
 
 nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
