@@ -2,6 +2,7 @@
 // post-operative postures.
 #include "log.hpp"
 #include "case_options.hpp"
+#include "full_breast_surgery.hpp"
 #include "surgery.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
@@ -33,6 +34,16 @@ Command add_surgery_command(CLI::App& root)
             insert_petsc_options(c, o->petsc_options);
             const auto out = claim_output(o->out, "results/" + CaseOptions::from(c).name + "-surgery",
                                           {o->case_file});
+            if (is_full_breast_case(c)) // geometry.mesh_file: the user's full breast
+            {
+              auto r = full_breast_surgery(c, out, MPI_COMM_WORLD);
+              if (log::is_root())
+                std::cout << surgery_table(r.base)
+                          << fmt::format("largest gaps: keel faces {:.4f} mm, P2 face to the chest {:.4f} mm\n",
+                                         1e3 * r.gap_tissue, 1e3 * r.gap_chest)
+                          << "results written to " << out.path().string() << "/\n";
+              return 0;
+            }
             auto r = surgery(c, out, MPI_COMM_WORLD);
             if (log::is_root())
             {

@@ -31,6 +31,21 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
                             double from, double to, const LoadStepOptions& opt,
                             const std::string& context, double reference_norm)
 {
+  return continuation(model, newton, std::vector<ParameterPath>{{parameter, from, to}}, opt, context,
+                      reference_norm);
+}
+
+LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::vector<ParameterPath>& parameters,
+                            const LoadStepOptions& opt, const std::string& context, double reference_norm)
+{
+  // Each parameter at fraction s of its path; the first one's value is recorded.
+  auto set_all = [&](double s)
+  {
+    for (const auto& p : parameters)
+      model.set_parameter(p.name, {p.from + s * (p.to - p.from)});
+  };
+  const std::string& parameter = parameters.front().name;
+  const double from = parameters.front().from, to = parameters.front().to;
   LoadPathReport rep;
   newton.invalidate_preconditioner(); // the state may have changed since the last solve
   auto x = model.displacement()->x()->mutable_array();
@@ -40,7 +55,7 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
   {
     const double s_try = std::min(1.0, s + ds);
     const double value = from + s_try * (to - from);
-    model.set_parameter(parameter, {value});
+    set_all(s_try);
     rep.add(value, newton.solve(reference_norm));
     const NewtonReport& nr = rep.solves.back().newton;
     if (nr.converged)
@@ -62,7 +77,7 @@ LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::strin
                  parameter, value, nr.message, ds);
       if (ds < opt.min_step)
       {
-        model.set_parameter(parameter, {from + s * (to - from)});
+        set_all(s);
         throw SolveError(fmt::format(
             "{}: no convergence beyond {} = {:.6g} (fraction {:.4g} of the path) even with "
             "the smallest step {:.3g}; last failure: {}",

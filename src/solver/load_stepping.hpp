@@ -32,6 +32,13 @@ struct LoadPathReport
   void append(LoadPathReport later);
 };
 
+/// One parameter of a continuation path: driven from `from` to `to`.
+struct ParameterPath
+{
+  std::string name;
+  double from, to;
+};
+
 /// Drive model parameter `parameter` from `from` to `to` (fractions s in
 /// [0, 1] of the path), re-solving with `newton` at each step. A failed step
 /// restores the last converged state and halves the step; below
@@ -40,4 +47,7 @@ struct LoadPathReport
 LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::string& parameter,
                             double from, double to, const LoadStepOptions& options,
                             const std::string& context, double reference_norm);
+/// The same with several parameters driven together: each at from + s (to - from).
+LoadPathReport continuation(Model& model, NewtonSolver& newton, const std::vector<ParameterPath>& parameters,
+                            const LoadStepOptions& options, const std::string& context, double reference_norm);
 } // namespace breastsim
