@@ -432,15 +432,22 @@ Mat Model::create_matrix()
   if (partners)
     update_partners("");
   la::SparsityPattern pattern = fem::create_sparsity_pattern(*forms("").jacobian);
-  for (auto& p : _partners)
-    if (partner_weight(*p, "") != 0.0)
-    {
-      PetscMat K(p->hessian_coupling({}));
-      insert_block_pattern(pattern, K.get());
-    }
   pattern.assemble();
   PetscMat A(la::petsc::create_matrix(_mesh.mesh->comm(), pattern, "aij"));
   insert_pattern(A.get(), pattern);
+  if (partners)
+  {
+    // The couplings may join blocks on different ranks, outside the form's
+    // pattern: inserted into the assembled matrix.
+    for (auto& p : _partners)
+      if (partner_weight(*p, "") != 0.0)
+      {
+        PetscMat K(p->hessian_coupling({}));
+        insert_coupling_blocks(A.get(), K.get());
+      }
+    PETSC_CHECK(MatAssemblyBegin(A.get(), MAT_FINAL_ASSEMBLY));
+    PETSC_CHECK(MatAssemblyEnd(A.get(), MAT_FINAL_ASSEMBLY));
+  }
   _jacobian_adder.record(A.get()); // the first Jacobian already goes straight into the values
   return A.release();
 }

@@ -132,8 +132,9 @@ private:
   void assemble_recorded(Mat A, const dolfinx::fem::Form<T>& jacobian);
   /// A += s K (owned rows of K), new nonzeros allocated.
   void add_scaled(Mat A, Mat K, double s) const;
-  /// The blocks of K's nonzeros (bs 3) into `pattern`.
-  static void insert_block_pattern(dolfinx::la::SparsityPattern& pattern, Mat K);
+  /// Zero 3x3 blocks of A at the blocks of K's nonzeros (owned rows, global
+  /// indices, any rank's columns), allocated; A needs a final assembly after.
+  static void insert_coupling_blocks(Mat A, Mat K);
   /// Zeros at every entry of `pattern` (blocked) and the final assembly.
   void insert_pattern(Mat A, const dolfinx::la::SparsityPattern& pattern) const;
   /// b = scale (g - u) on the constrained dofs.

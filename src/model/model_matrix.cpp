@@ -35,24 +35,31 @@ void Model::add_scaled(Mat A, Mat K, double s) const
   }
 }
 
-void Model::insert_block_pattern(la::SparsityPattern& pattern, Mat K)
+void Model::insert_coupling_blocks(Mat A, Mat K)
 {
-  // Block row r / 3 couples with the blocks cols / 3 of row r (serial
-  // (partner fields): local = global indices).
+  // Zero blocks of A at the blocks of K's nonzeros: block row r / 3 with the
+  // blocks c / 3 of row r (global indices; rows owned by this rank, whose
+  // columns may lie on any rank), allocated beyond A's preallocation.
+  PETSC_CHECK(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   PetscInt r0, r1;
   PETSC_CHECK(MatGetOwnershipRange(K, &r0, &r1));
+  std::vector<PetscInt> blocks;
+  std::vector<PetscScalar> zeros;
   for (PetscInt r = r0; r < r1; ++r)
   {
     PetscInt n;
     const PetscInt* cols;
     PETSC_CHECK(MatGetRow(K, r, &n, &cols, nullptr));
-    std::vector<std::int32_t> row = {static_cast<std::int32_t>(r / 3)}, blocks;
-    for (PetscInt k = 0; k < n; ++k)
-      blocks.push_back(static_cast<std::int32_t>(cols[k] / 3));
+    blocks.assign(cols, cols + n);
     PETSC_CHECK(MatRestoreRow(K, r, &n, &cols, nullptr));
+    for (auto& c : blocks)
+      c /= 3;
     std::sort(blocks.begin(), blocks.end());
     blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
-    pattern.insert(row, blocks);
+    zeros.assign(9 * blocks.size(), 0.0);
+    const PetscInt row = r / 3;
+    PETSC_CHECK(MatSetValuesBlocked(A, 1, &row, static_cast<PetscInt>(blocks.size()), blocks.data(), zeros.data(),
+                                    ADD_VALUES));
   }
 }
 

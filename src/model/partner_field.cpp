@@ -30,6 +30,12 @@ double outside(const std::array<double, 3>& xi)
   return std::max({0.0, -xi[0], -xi[1], -xi[2], xi[0] + xi[1] + xi[2] - 1});
 }
 
+/// How far outside its nearest cell of face B (in that cell's reference
+/// coordinates, outside()) an image g(X_i) may lie: u there is the cell's
+/// polynomial extended (two faces that are mirror images only up to the
+/// skin's asymmetry, e.g. the keel faces of a full breast).
+constexpr double max_extension = 0.5;
+
 /// The case-file key of the UFL Constant `name` (the name if it has none).
 std::string key_of(const std::string& name)
 {
@@ -39,38 +45,36 @@ std::string key_of(const std::string& name)
   return "'" + name + "'";
 }
 
-/// Refuse more than one rank: P is built from the serial mesh.
-void require_serial(MPI_Comm comm, const std::string& term)
-{
-  int size;
-  MPI_Comm_size(comm, &size);
-  if (size > 1)
-    throw InputError(fmt::format("energy term '{}' (a tissue-to-tissue suture) is serial-only: run it "
-                                 "with one MPI rank (got {})", term, size));
-}
-
-/// The facets of face A and of face B; InputError naming the term if either is empty.
+/// This rank's facets of face A and of face B; InputError naming the term
+/// (on every rank) if either face has no facet on any rank (collective).
 std::array<std::vector<std::int32_t>, 2> partner_faces(const mesh::MeshTags<std::int32_t>& facets,
-                                                       const generated::PartnerInfo& info)
+                                                       const generated::PartnerInfo& info, MPI_Comm comm)
 {
   const int tag_a = generated::tag(info.face_a), tag_b = generated::tag(info.face_b);
   auto faces_a = tagged_facets(facets, tag_a), faces_b = tagged_facets(facets, tag_b);
-  if (faces_a.empty() || faces_b.empty())
+  std::array<std::int64_t, 2> counts = {static_cast<std::int64_t>(faces_a.size()),
+                                        static_cast<std::int64_t>(faces_b.size())};
+  MPI_Allreduce(MPI_IN_PLACE, counts.data(), 2, MPI_INT64_T, MPI_SUM, comm);
+  if (counts[0] == 0 || counts[1] == 0)
     throw InputError(fmt::format("energy term '{}': the mesh has no facets tagged {} (face A = {} ({}): {} "
                                  "facets, face B = {} ({}): {} facets); tag the two faces to sew",
-                                 info.term, faces_a.empty() ? info.face_a : info.face_b, info.face_a,
-                                 tag_a, faces_a.size(), info.face_b, tag_b, faces_b.size()));
+                                 info.term, counts[0] == 0 ? info.face_a : info.face_b, info.face_a,
+                                 tag_a, counts[0], info.face_b, tag_b, counts[1]));
   return {std::move(faces_a), std::move(faces_b)};
 }
 
-/// The cells touching face B, where the images g(X_i) are looked for, with
-/// their bounding boxes [min x, min y, min z, max x, max y, max z].
-struct CandidateCells
+/// The cells touching face B, gathered on every rank (the face is small):
+/// their geometry nodes and the global (blocked) dofs of u at those nodes,
+/// with bounding boxes [min x, min y, min z, max x, max y, max z].
+struct FaceCells
 {
-  std::vector<std::int32_t> cells;
+  std::size_t nodes_per_cell = 0;
+  std::vector<double> x;          ///< (cells, nodes_per_cell, 3)
+  std::vector<std::int64_t> dofs; ///< (cells, nodes_per_cell) global node (block) indices
   std::vector<std::array<double, 6>> boxes;
   double pad = 0; ///< boxes widened by this: curved (P2) faces may put g(X_i) just outside
 
+  std::size_t size() const { return boxes.size(); }
   /// Whether y lies in the padded box of cell k.
   bool near(std::size_t k, const std::array<double, 3>& y) const
   {
@@ -80,30 +84,70 @@ struct CandidateCells
   }
 };
 
-CandidateCells candidate_cells(const mesh::Mesh& mesh, const std::vector<std::int32_t>& faces_b)
+/// All ranks' values of `local` concatenated in rank order (collective).
+template <typename V>
+std::vector<V> all_gather(const std::vector<V>& local, MPI_Datatype type, MPI_Comm comm)
 {
+  int size;
+  MPI_Comm_size(comm, &size);
+  int n = static_cast<int>(local.size());
+  std::vector<int> counts(size), offsets(size + 1, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 0; r < size; ++r)
+    offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<V> all(offsets[size]);
+  MPI_Allgatherv(local.data(), n, type, all.data(), counts.data(), offsets.data(), type, comm);
+  return all;
+}
+
+/// The owned cells touching this rank's facets of face B, gathered on every rank.
+FaceCells gather_face_cells(const fem::FunctionSpace& V, const std::vector<std::int32_t>& faces_b)
+{
+  const mesh::Mesh& mesh = *V.mesh();
   const int tdim = mesh.topology().dim();
   mesh.topology_mutable().create_connectivity(tdim - 1, tdim);
   auto f_to_c = mesh.topology().connectivity(tdim - 1, tdim);
-  CandidateCells out;
+  const std::int32_t owned = mesh.topology().index_map(tdim)->size_local();
+  std::vector<std::int32_t> cells;
   for (auto f : faces_b)
     for (auto c : f_to_c->links(f))
-      out.cells.push_back(c);
-  std::sort(out.cells.begin(), out.cells.end());
-  out.cells.erase(std::unique(out.cells.begin(), out.cells.end()), out.cells.end());
+      if (c < owned)
+        cells.push_back(c);
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   const auto& xdofs = mesh.geometry().dofmap();
   std::span<const double> xg = mesh.geometry().x();
-  out.boxes.resize(out.cells.size());
+  const auto& map = *V.dofmap()->index_map;
+  FaceCells out;
+  std::vector<double> x;
+  std::vector<std::int64_t> dofs;
+  for (auto c : cells)
+  {
+    for (auto n : xdofs.links(c))
+      x.insert(x.end(), xg.begin() + 3 * n, xg.begin() + 3 * n + 3);
+    auto cd = V.dofmap()->cell_dofs(c);
+    std::vector<std::int32_t> local(cd.begin(), cd.end());
+    std::vector<std::int64_t> global(local.size());
+    map.local_to_global(local, global);
+    dofs.insert(dofs.end(), global.begin(), global.end());
+  }
+  std::int64_t nn = cells.empty() ? 0 : static_cast<std::int64_t>(xdofs.links(cells[0]).size());
+  MPI_Allreduce(MPI_IN_PLACE, &nn, 1, MPI_INT64_T, MPI_MAX, mesh.comm());
+  out.nodes_per_cell = static_cast<std::size_t>(nn);
+  out.x = all_gather(x, MPI_DOUBLE, mesh.comm());
+  out.dofs = all_gather(dofs, MPI_INT64_T, mesh.comm());
+  out.boxes.resize(out.dofs.size() / std::max<std::size_t>(1, out.nodes_per_cell));
   double diam = 0;
-  for (std::size_t k = 0; k < out.cells.size(); ++k)
+  for (std::size_t k = 0; k < out.boxes.size(); ++k)
   {
     auto& b = out.boxes[k];
     b = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-    for (auto n : xdofs.links(out.cells[k]))
+    for (std::size_t n = 0; n < out.nodes_per_cell; ++n)
       for (int j = 0; j < 3; ++j)
       {
-        b[j] = std::min(b[j], xg[3 * n + j]);
-        b[3 + j] = std::max(b[3 + j], xg[3 * n + j]);
+        const double v = out.x[3 * (k * out.nodes_per_cell + n) + j];
+        b[j] = std::min(b[j], v);
+        b[3 + j] = std::max(b[3 + j], v);
       }
     diam = std::max({diam, b[3] - b[0], b[4] - b[1], b[5] - b[2]});
   }
@@ -120,51 +164,45 @@ std::array<double, 3> apply_map(const AffineMap& g, const double* x)
   return y;
 }
 
-/// The candidate cell in which y lies least outside (outside() of its
-/// reference point xi; the first such cell on ties), or cell -1.
+/// The gathered cell (index into FaceCells) in which y lies least outside
+/// (outside() of its reference point xi; the first such cell on ties), or -1.
 struct ImagePoint
 {
-  std::int32_t cell = -1;
+  std::int64_t cell = -1;
   std::array<double, 3> xi{};
   double outside = std::numeric_limits<double>::infinity();
 };
 
-ImagePoint locate_image(const mesh::Geometry& geom, const CandidateCells& candidates,
-                        const std::array<double, 3>& y)
+ImagePoint locate_image(const fem::CoordinateElement& cmap, const FaceCells& cells, const std::array<double, 3>& y,
+                        bool nearest)
 {
   namespace stdex = std::experimental;
   using mdspan2 = stdex::mdspan<double, stdex::dextents<std::size_t, 2>>;
   using cmdspan2 = stdex::mdspan<const double, stdex::dextents<std::size_t, 2>>;
-  const auto& xdofs = geom.dofmap();
-  std::span<const double> xg = geom.x();
   ImagePoint best;
-  std::vector<double> nodes;
-  for (std::size_t k = 0; k < candidates.cells.size(); ++k)
+  const std::size_t nn = cells.nodes_per_cell;
+  for (std::size_t k = 0; k < cells.size(); ++k)
   {
-    if (!candidates.near(k, y))
+    if (!nearest && !cells.near(k, y))
       continue;
-    auto gn = xdofs.links(candidates.cells[k]);
-    nodes.resize(3 * gn.size());
-    for (std::size_t n = 0; n < gn.size(); ++n)
-      for (int j = 0; j < 3; ++j)
-        nodes[3 * n + j] = xg[3 * gn[n] + j];
     std::array<double, 3> xi{};
     try
     {
-      geom.cmap().pull_back_nonaffine(mdspan2(xi.data(), 1, 3), cmdspan2(y.data(), 1, 3),
-                                      cmdspan2(nodes.data(), gn.size(), 3), 1e-12, 20);
+      cmap.pull_back_nonaffine(mdspan2(xi.data(), 1, 3), cmdspan2(y.data(), 1, 3),
+                               cmdspan2(cells.x.data() + 3 * k * nn, nn, 3), 1e-12, 20);
     }
     catch (const std::runtime_error&)
     {
       continue; // Newton of the pull-back failed: y is far outside this cell
     }
     if (outside(xi) < best.outside)
-      best = {candidates.cells[k], xi, outside(xi)};
+      best = {static_cast<std::int64_t>(k), xi, outside(xi)};
   }
   return best;
 }
 
-/// An empty AIJ matrix n x n (n = nlocal on this rank) with `per_row` entries per row.
+/// An empty AIJ matrix n x n (n = nlocal on this rank) with `per_row` entries per row
+/// (in the diagonal and in the off-diagonal part under MPI).
 PetscMat create_interpolation_matrix(MPI_Comm comm, std::int32_t nlocal, std::size_t per_row)
 {
   PetscMat P;
@@ -172,22 +210,24 @@ PetscMat create_interpolation_matrix(MPI_Comm comm, std::int32_t nlocal, std::si
   PETSC_CHECK(MatSetSizes(P.get(), nlocal, nlocal, PETSC_DETERMINE, PETSC_DETERMINE));
   PETSC_CHECK(MatSetType(P.get(), MATAIJ));
   PETSC_CHECK(MatSeqAIJSetPreallocation(P.get(), static_cast<PetscInt>(per_row), nullptr));
-  PETSC_CHECK(MatMPIAIJSetPreallocation(P.get(), static_cast<PetscInt>(per_row), nullptr, 0, nullptr));
+  PETSC_CHECK(MatMPIAIJSetPreallocation(P.get(), static_cast<PetscInt>(per_row), nullptr,
+                                                static_cast<PetscInt>(per_row), nullptr));
   return P;
 }
 
-/// Rows 3 i + c of P: u_c(y) = sum_j phi_j(xi) u_c(node j), the element basis
-/// at xi of the cell with dofs `cell_dofs` (the geometry and u are Lagrange
-/// elements of the same degree: local node j is the same point for both).
-void set_interpolation_rows(Mat P, std::int32_t i, std::span<const std::int32_t> cell_dofs,
+/// Rows 3 i + c of P (i: global node index): u_c(y) = sum_j phi_j(xi) u_c(node j),
+/// the element basis at xi of the cell whose global node indices are
+/// `cell_dofs` (the geometry and u are Lagrange elements of the same degree:
+/// local node j is the same point for both).
+void set_interpolation_rows(Mat P, std::int64_t i, std::span<const std::int64_t> cell_dofs,
                             const std::vector<double>& basis)
 {
   for (int c = 0; c < 3; ++c)
   {
-    const PetscInt row = 3 * i + c;
+    const PetscInt row = static_cast<PetscInt>(3 * i + c);
     for (std::size_t j = 0; j < cell_dofs.size(); ++j)
     {
-      const PetscInt col = 3 * cell_dofs[j] + c;
+      const PetscInt col = static_cast<PetscInt>(3 * cell_dofs[j] + c);
       const PetscScalar val = basis[j];
       if (val != 0.0)
         PETSC_CHECK(MatSetValues(P, 1, &row, 1, &col, &val, INSERT_VALUES));
@@ -201,9 +241,26 @@ InputError unmapped_node(const generated::PartnerInfo& info, const double* X,
 {
   return InputError(fmt::format(
       "energy term '{}': the map g sends the node ({:.6g}, {:.6g}, {:.6g}) m of face A ({}) to "
-      "({:.6g}, {:.6g}, {:.6g}) m, which is in no cell touching face B ({}); check the map "
-      "keys {} and {}", info.term, X[0], X[1], X[2], info.face_a, y[0], y[1], y[2], info.face_b,
+      "({:.6g}, {:.6g}, {:.6g}) m, which is in no cell touching face B ({}) nor within {} of one (in its "
+      "reference coordinates); check the map "
+      "keys {} and {}", info.term, X[0], X[1], X[2], info.face_a, y[0], y[1], y[2], info.face_b, max_extension,
       key_of(info.map_matrix), key_of(info.map_shift)));
+}
+/// Collective: the lowest rank's non-empty `error` thrown as an InputError on every rank.
+void throw_first_error(const std::string& error, MPI_Comm comm)
+{
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  int who = error.empty() ? std::numeric_limits<int>::max() : rank;
+  MPI_Allreduce(MPI_IN_PLACE, &who, 1, MPI_INT, MPI_MIN, comm);
+  if (who == std::numeric_limits<int>::max())
+    return;
+  std::string message = error;
+  int n = static_cast<int>(message.size());
+  MPI_Bcast(&n, 1, MPI_INT, who, comm);
+  message.resize(n);
+  MPI_Bcast(message.data(), n, MPI_CHAR, who, comm);
+  throw InputError(message);
 }
 } // namespace
 
@@ -212,29 +269,43 @@ Mat build_partner_interpolation(const fem::FunctionSpace& V,
                                 const generated::PartnerInfo& info, const AffineMap& g)
 {
   auto mesh = V.mesh();
-  require_serial(mesh->comm(), info.term);
-  const auto faces = partner_faces(facets, info);
-  const CandidateCells candidates = candidate_cells(*mesh, faces[1]);
-  const auto& geom = mesh->geometry();
-  const std::size_t nn = geom.dofmap().links(candidates.cells[0]).size();
+  const auto faces = partner_faces(facets, info, mesh->comm());
+  const FaceCells cells = gather_face_cells(V, faces[1]);
+  const auto& cmap = mesh->geometry().cmap();
   auto dofmap = V.dofmap();
-  if (static_cast<std::size_t>(dofmap->cell_dofs(candidates.cells[0]).size()) != nn)
+  if (mesh->topology().index_map(3)->size_local() > 0
+      && dofmap->cell_dofs(0).size() != mesh->geometry().dofmap().links(0).size())
     throw std::logic_error("partner field: geometry and displacement degrees differ");
 
-  // Rows: the nodes of face A (blocked dof indices).
+  // Rows: the owned nodes of face A (blocked dof indices), global row 3 (first + i) + c.
+  const auto& map = *dofmap->index_map;
+  const std::int32_t owned = map.size_local();
+  const std::int64_t first = map.local_range()[0];
   const auto nodes_a = fem::locate_dofs_topological(V, mesh->topology().dim() - 1, faces[0]);
   const auto X = V.tabulate_dof_coordinates(false);
-  PetscMat P = create_interpolation_matrix(mesh->comm(), dofmap->index_map->size_local() * 3, nn);
-  std::vector<double> basis(geom.cmap().tabulate_shape(0, 1)[2]);
+  PetscMat P = create_interpolation_matrix(mesh->comm(), owned * 3, cells.nodes_per_cell);
+  std::vector<double> basis(cmap.tabulate_shape(0, 1)[2]);
+  std::string error; // the first node whose image is too far from face B
   for (auto i : nodes_a)
   {
+    if (i >= owned)
+      continue; // its owner sets the row
     const std::array<double, 3> y = apply_map(g, &X[3 * i]);
-    const ImagePoint image = locate_image(geom, candidates, y);
-    if (image.outside > 1e-3)
-      throw unmapped_node(info, &X[3 * i], y);
-    geom.cmap().tabulate(0, std::span<const double>(image.xi.data(), 3), {1, 3}, basis);
-    set_interpolation_rows(P.get(), i, dofmap->cell_dofs(image.cell), basis);
+    ImagePoint image = locate_image(cmap, cells, y, false);
+    if (image.outside > 1e-3) // beyond face B's cells: the nearest cell's polynomial, extended
+      image = locate_image(cmap, cells, y, true);
+    if (image.outside > max_extension)
+    {
+      if (error.empty())
+        error = unmapped_node(info, &X[3 * i], y).what();
+      continue;
+    }
+    cmap.tabulate(0, std::span<const double>(image.xi.data(), 3), {1, 3}, basis);
+    const std::size_t nn = cells.nodes_per_cell;
+    set_interpolation_rows(P.get(), first + i,
+                           std::span<const std::int64_t>(cells.dofs.data() + image.cell * nn, nn), basis);
   }
+  throw_first_error(error, mesh->comm());
   PETSC_CHECK(MatAssemblyBegin(P.get(), MAT_FINAL_ASSEMBLY));
   PETSC_CHECK(MatAssemblyEnd(P.get(), MAT_FINAL_ASSEMBLY));
   return P.release();
@@ -303,10 +374,13 @@ Mat PartnerField::hessian_coupling(std::span<const std::int8_t> constrained)
   PETSC_CHECK(MatPtAP(_Aww.get(), _P.get(), MAT_INITIAL_MATRIX, PETSC_DEFAULT, Q.out()));    // P^T E_ww P
   PETSC_CHECK(MatAXPY(K.get(), 1.0, KT.get(), DIFFERENT_NONZERO_PATTERN));
   PETSC_CHECK(MatAXPY(K.get(), 1.0, Q.get(), DIFFERENT_NONZERO_PATTERN));
+  // The constrained owned rows, by their global index (local index + first owned row).
+  PetscInt r0, r1;
+  PETSC_CHECK(MatGetOwnershipRange(K.get(), &r0, &r1));
   std::vector<PetscInt> rows;
-  for (std::size_t i = 0; i < constrained.size(); ++i)
+  for (PetscInt i = 0; i < std::min<PetscInt>(r1 - r0, static_cast<PetscInt>(constrained.size())); ++i)
     if (constrained[i])
-      rows.push_back(static_cast<PetscInt>(i));
+      rows.push_back(r0 + i);
   PETSC_CHECK(MatZeroRowsColumns(K.get(), static_cast<PetscInt>(rows.size()), rows.data(), 0.0,
                                  nullptr, nullptr));
   return K.release();

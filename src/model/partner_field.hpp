@@ -11,7 +11,9 @@
 // P is the material correspondence: built from g and the reference geometry
 // at its first use and kept when the reference is reset (the same material
 // points keep the same reference-cell coordinates); rebuilt only when G or t
-// change. Serial only: refuses with an InputError on more than one rank.
+// change. Under MPI, the cells touching face B (few) are gathered on every
+// rank with the global indices of their nodes; each rank builds its owned
+// rows of P (global columns), and the products are PETSc's parallel ones.
 #include "breastsim_registry.hpp"
 #include "petsc.hpp"
 #include <array>
@@ -33,9 +35,10 @@ using AffineMap = std::array<double, 12>;
 /// Interpolation matrix P (n x n, n = number of displacement unknowns) of
 /// the partner `info`: rows of the nodes of face_a, evaluating u at g(X_i)
 /// inside the cells touching face_b. Caller owns. Throws InputError naming
-/// the term if a face is empty, a mapped node lies in no such cell (more than
-/// 1e-3 outside in reference coordinates), or the communicator has more than
-/// one rank.
+/// the term if a face is empty or a mapped node lies in no such cell (more
+/// than 1e-3 outside in reference coordinates; then the nearest cell's
+/// polynomial is extended up to 0.5 outside it, beyond that an InputError).
+/// Collective.
 Mat build_partner_interpolation(const dolfinx::fem::FunctionSpace& V,
                                 const dolfinx::mesh::MeshTags<std::int32_t>& facets,
                                 const generated::PartnerInfo& info, const AffineMap& g);
