@@ -171,3 +171,57 @@ TEST(ScanChecks, APointCloudOverAChestIsFitted)
   EXPECT_LT(m.fit_rms, 1e-5);
   EXPECT_NEAR(m.frame.footprint_radius, 0.07, 0.01);
 }
+
+namespace
+{
+/// A chest wall curved about the cranial axis, y = -x^2 / (2 R) (bulging toward
+/// the breast, radius R), as a triangulated 10 x 10 grid over |x|, |z| <= 0.1 m
+/// with its triangles facing +y.
+ScanSurface curved_chest(double R)
+{
+  ScanSurface chest;
+  chest.where = "scan 'chest'";
+  chest.units = Units::m;
+  const int n = 10;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+    {
+      const double x = -0.1 + 0.2 * i / n, z = -0.1 + 0.2 * j / n;
+      chest.points.push_back({x, -x * x / (2 * R), z});
+    }
+  auto id = [&](int i, int j) -> std::int64_t { return i * (n + 1) + j; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+    {
+      chest.triangles.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1)});
+      chest.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i + 1, j)});
+    }
+  return chest;
+}
+} // namespace
+
+TEST(ScanChecks, MeasuresTheChestWallAgainstItsPlane)
+{
+  // The cap's own footprint: planar up to the fit's rounding.
+  const ScanModel flat = fit_scan(cap_scan(), nullptr, {});
+  EXPECT_EQ(flat.chest.source, "footprint");
+  EXPECT_LT(flat.chest.plane_rms, 1e-9);
+  EXPECT_FALSE(flat.chest.quadric);
+  // A gently curved chest (R = 1 m): kept, its plane RMS and radius reported.
+  const ScanSurface gentle = curved_chest(1.0);
+  const ScanModel m = fit_scan(cap_scan(), &gentle, {});
+  EXPECT_EQ(m.chest.source, "chest surface");
+  EXPECT_GT(m.chest.plane_rms, 5e-4);
+  EXPECT_LT(m.chest.plane_rms, 3e-3);
+  ASSERT_TRUE(m.chest.quadric);
+  EXPECT_LT(m.chest.quadric_rms, 1e-4); // a quadric graph, up to its flat triangles (h^2 / 8R = 0.05 mm)
+  EXPECT_NEAR(m.chest.curvature_radii[0], 1.0, 0.01);
+  EXPECT_TRUE(std::isinf(m.chest.curvature_radii[1]));
+  // A rib cage of R = 0.25 m: the plane misplaces the base by more than 3 mm RMS.
+  const ScanSurface ribs = curved_chest(0.25);
+  expect_refused(cap_scan(), {"chest too curved for a planar base", "mm RMS", "--max-chest-rms = 3.00 mm"}, {},
+                 &ribs);
+  ScanModelOptions loose;
+  loose.limits.max_chest_rms = 0.02;
+  EXPECT_GT(fit_scan(cap_scan(), &ribs, loose).chest.plane_rms, 3e-3);
+}

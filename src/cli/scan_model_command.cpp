@@ -46,6 +46,7 @@ ScanModelRequest request(const ScanOptions& o)
   check_range(r.options.limits.max_hole, 0.001, 0.1, "--max-hole", "m");
   check_range(r.options.limits.max_noise, 1e-5, 0.01, "--max-noise", "m");
   check_range(r.options.limits.max_spike, 1e-4, 0.05, "--max-spike", "m");
+  check_range(r.options.limits.max_chest_rms, 1e-4, 0.05, "--max-chest-rms", "m");
   check_range(r.options.mesh.order, 1, 2, "--order", "");
   check_range(r.options.degree, 2, 20, "--degree", "");
   if (!std::isnan(o.theta))
@@ -85,6 +86,9 @@ Command add_scan_model_command(CLI::App& root)
       ->capture_default_str();
   app->add_option("--max-spike", o->model.limits.max_spike, "a point farther off the skin is a spike [m], in "
                                                             "[1e-4, 0.05]")->capture_default_str();
+  app->add_option("--max-chest-rms", o->model.limits.max_chest_rms,
+                  "largest RMS distance of the chest wall under the breast from the chest plane [m], in "
+                  "[1e-4, 0.05]")->capture_default_str();
   app->add_option("--name", o->name, "case.name of the written case")->capture_default_str();
   add_output_option(app, o->out, "output folder (default results/scan-model); replaced on success");
   return {app, [o]()

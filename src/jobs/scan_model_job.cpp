@@ -3,6 +3,7 @@
 #include "msh_writer.hpp"
 #include "on_root.hpp"
 #include "output.hpp"
+#include <cmath>
 #include <fmt/format.h>
 
 namespace breastsim
@@ -18,13 +19,29 @@ nlohmann::json frame_json(const scan::BreastFrame& f, scan::Units units)
           {"mirrored", f.mirrored()}, {"unit_to_m", units == scan::Units::mm ? 1e-3 : 1.0}};
 }
 
+/// The chest wall against the chest plane (the mesh's base); radii of a flat
+/// direction are null.
+nlohmann::json chest_json(const scan::ChestCurvature& c)
+{
+  nlohmann::json j = {{"source", c.source}, {"samples", c.samples}, {"plane_rms_m", c.plane_rms},
+                      {"plane_max_m", c.plane_max}, {"base", "the chest plane (a planar base)"}};
+  if (c.quadric)
+  {
+    j["quadric_rms_m"] = c.quadric_rms;
+    j["curvature_radii_m"] = nlohmann::json::array();
+    for (double r : c.curvature_radii)
+      j["curvature_radii_m"].push_back(std::isfinite(r) ? nlohmann::json(r) : nlohmann::json(nullptr));
+  }
+  return j;
+}
+
 nlohmann::json summary_json(const scan::ScanModel& m, std::size_t cells, const Posture& p)
 {
   return {{"posture", p.name}, {"theta_deg", p.theta_deg}, {"scan_points", m.points},
           {"scan_triangles", m.triangles}, {"points_fitted", m.points_used},
           {"fit_degree", m.fit.degree}, {"fit_rms_m", m.fit_rms}, {"noise_rms_m", m.noise_rms},
           {"nipple_m", m.mesh.nipple}, {"footprint_radius_m", m.frame.footprint_radius},
-          {"footprint_off_plane_m", m.frame.footprint_off_plane},
+          {"footprint_off_plane_m", m.frame.footprint_off_plane}, {"chest", chest_json(m.chest)},
           {"tetrahedra", cells}, {"nodes", m.mesh.mesh.num_nodes()},
           {"volume_m3", m.half ? 2 * m.mesh.volume : m.mesh.volume}};
 }

@@ -21,6 +21,7 @@ struct ScanLimits
   double max_hole = 0.025;                  ///< widest hole bridged by the fit [m]
   double max_noise = 0.002;                 ///< largest robust RMS distance to the fitted surface [m]
   double max_spike = 0.006;                 ///< a point farther than this (and 8 noise RMS) is a spike [m]
+  double max_chest_rms = 0.003;             ///< largest RMS distance of the chest wall from the chest plane [m]
 };
 
 /// The raw checks of a skin scan (or, with `chest`, of a chest-wall surface: no count or size bound).

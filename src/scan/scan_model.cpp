@@ -14,6 +14,9 @@ ScanModel fit_scan(const ScanSurface& skin, const ScanSurface* chest, const Scan
   m.points = skin.points.size();
   m.triangles = skin.triangles.size();
   m.frame = breast_frame(skin, chest, o.frame, o.limits.max_hole);
+  m.chest = measure_chest(m.frame, skin, chest);
+  if (chest) // before the fit: a plane that misplaces the chest wall derails the fit
+    check_chest_curvature(m.chest, o.limits.max_chest_rms, chest->where);
   const std::vector<std::size_t> used = fit_points(skin);
   std::vector<Vec3> pts;
   pts.reserve(used.size());
@@ -23,6 +26,8 @@ ScanModel fit_scan(const ScanSurface& skin, const ScanSurface* chest, const Scan
   m.fit = fit_radial(pts, o.degree, o.smoothing);
   const std::vector<double> r = radial_residuals(m.fit, pts);
   check_fit(skin, m.frame, m.fit, used, r, o.limits);
+  if (!chest) // after the fit's checks: a noisy footprint is refused as noise, not as a curved chest
+    check_chest_curvature(m.chest, o.limits.max_chest_rms, skin.where);
   double sum = 0;
   for (double v : r)
     sum += v * v;

@@ -2,9 +2,12 @@
 // From a skin scan (and optionally a chest-wall surface) to a tagged
 // tetrahedral mesh in the breast frame: read (scan_readers.hpp), refuse a
 // dirty scan (scan_checks.hpp), find the chest plane, frame and nipple
-// (scan_frame.hpp), fit the smooth star-shaped skin (radial_fit.hpp), check
-// the fit against the points, and mesh the body under it (scan_mesh.hpp).
+// (scan_frame.hpp), measure the chest wall against that plane and refuse a
+// chest too curved for it (chest_curvature.hpp), fit the smooth star-shaped
+// skin (radial_fit.hpp), check the fit against the points, and mesh the body
+// under it (scan_mesh.hpp).
 // Runs on one process; every refusal is an InputError.
+#include "chest_curvature.hpp"
 #include "radial_fit.hpp"
 #include "scan_checks.hpp"
 #include "scan_frame.hpp"
@@ -27,6 +30,7 @@ struct ScanModelOptions
 struct ScanModel
 {
   BreastFrame frame;
+  ChestCurvature chest;  ///< the chest wall against the chest plane (the mesh's base)
   RadialSurface fit;
   ScanMesh mesh;
   std::size_t points = 0, triangles = 0, points_used = 0;

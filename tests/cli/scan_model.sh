@@ -51,6 +51,18 @@ open("scan.xyz", "w").write(b)
 # a truncated binary STL
 data = bytearray(80) + struct.pack("<I", 1000) + bytearray(50 * 10)
 open("truncated.stl", "wb").write(bytes(data))
+# the true chest (the plane y = 50 mm of the scanner) bent about the cranial axis: y - 50 = -(x - 100)^2 / (2 R)
+raw = open("patient/chest.stl", "rb").read()
+count = struct.unpack("<I", raw[80:84])[0]
+for name, R in (("ribs.stl", 250.0), ("gentle.stl", 1000.0)):
+    out = bytearray(raw[:84])
+    for k in range(count):
+        rec = raw[84 + 50 * k: 134 + 50 * k]
+        v = list(struct.unpack("<12f", rec[:48]))
+        for c in range(3, 12, 3):
+            v[c + 1] = 50.0 - (v[c] - 100.0) ** 2 / (2 * R)
+        out += struct.pack("<12f", *v) + rec[48:]
+    open(name, "wb").write(bytes(out))
 PY
 
 refuse() { # NAME MESSAGE ARGS...: exit 2, the message, no output folder
@@ -79,6 +91,16 @@ refuse unit_option "the unit of the scan's coordinates must be stated" patient/s
 refuse nipple "from the nearest point of the scan" patient/scan.stl --units mm --nipple 0,0,0
 refuse up "nearly along the chest normal" patient/scan.stl --units mm --up 0,1,0
 refuse size "--mesh-size = 0.5 is out of range" patient/scan.stl --units mm --mesh-size 0.5
+refuse chest_rms_option "--max-chest-rms = 0.5 is out of range" patient/scan.stl --units mm --max-chest-rms 0.5
+refuse curved_chest "chest too curved for a planar base" patient/scan.stl --units mm --chest ribs.stl
+"$BIN" -q scan-model patient/scan.stl --units mm --chest gentle.stl --mesh-size 0.012 --out gentle_model >/dev/null
+$PY - gentle_model/summary.json <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))["chest"]
+r = c["curvature_radii_m"][0]
+if not (c["source"] == "chest surface" and 0.0005 < c["plane_rms_m"] < 0.003 and 0.9 < r < 1.1):
+    sys.exit("FAIL: the gently curved chest (R = 1 m) measured as %s" % c)
+PY
 
 # Round trips: the synthetic patient, then a cap's scan (R = 70 mm, H = 60 mm).
 trip() { # NAME SCAN TRUTH [SCAN-MODEL OPTIONS...]
