@@ -88,7 +88,7 @@ void add_plan_routes(httplib::Server& server)
     with_json_body(req, res, check_measurements);
   });
   server.Post("/api/recording/check", [](const httplib::Request& req, httplib::Response& res) {
-    with_json_body(req, res, check_recording);
+    with_json_body(req, res, recording_check_answer);
   });
 }
 

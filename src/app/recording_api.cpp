@@ -23,4 +23,16 @@ nlohmann::json check_recording(const nlohmann::json& doc)
   return {{"ok", true}, {"noise_sigma_m", rec.noise_sigma}, {"known", rec.known},
           {"points", points}, {"postures", postures}};
 }
+
+nlohmann::json recording_check_answer(const nlohmann::json& doc)
+{
+  try
+  {
+    return check_recording(doc);
+  }
+  catch (const InputError& e)
+  {
+    return {{"ok", false}, {"error", e.what()}};
+  }
+}
 } // namespace breastsim::app

@@ -15,4 +15,8 @@ inline constexpr std::size_t max_recording_points = 20000;
 /// [{"name", "theta_deg", "points", "nipple": bool}]}; InputError with the
 /// library's message (key, value, allowed range) otherwise.
 nlohmann::json check_recording(const nlohmann::json& doc);
+/// The page's check of a file: check_recording, or {"ok": false, "error":
+/// the message} for a document that is not a valid recording (an answer,
+/// as for an impossible incision, not a bad request).
+nlohmann::json recording_check_answer(const nlohmann::json& doc);
 } // namespace breastsim::app

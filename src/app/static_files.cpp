@@ -22,7 +22,7 @@ struct Entry
   const char* mime;
 };
 
-constexpr std::array<Entry, 10> table = {{
+constexpr std::array<Entry, 11> table = {{
     {"/", false, "app.html", "text/html; charset=utf-8"},
     {"/index.html", false, "app.html", "text/html; charset=utf-8"},
     {"/app.js", false, "app.js", "text/javascript; charset=utf-8"},
@@ -31,6 +31,7 @@ constexpr std::array<Entry, 10> table = {{
     {"/report.js", false, "report.js", "text/javascript; charset=utf-8"},
     {"/sweep.js", false, "sweep.js", "text/javascript; charset=utf-8"},
     {"/misfit_plot.js", false, "misfit_plot.js", "text/javascript; charset=utf-8"},
+    {"/patient_files.js", false, "patient_files.js", "text/javascript; charset=utf-8"},
     {"/three/three.module.js", true, "build/three.module.js", "text/javascript; charset=utf-8"},
     {"/three/OrbitControls.js", true, "examples/jsm/controls/OrbitControls.js",
      "text/javascript; charset=utf-8"},

@@ -6,7 +6,9 @@
 // run a surgery standing and supine, reload while it runs (the page
 // reattaches) -> the numbers on the page equal the API's and the CLI's ->
 // the report (every posture's row and before | after picture) and its PDF
-// -> a 3 x 3 sweep -> export the case TOML. No console errors.
+// -> a 3 x 3 sweep -> export the case TOML -> a 3D recording loaded in the
+// Patient step and calibrated, a synthetic patient's scan loaded and shown
+// in 3D (bad files refused with the library's messages). No console errors.
 // The calibration's misfit plot (live, then final) against the API's evaluations.
 // Screenshots of each step into SHOT_DIR; the first view (< 1 s, median of 5
 // loads) and the slider redraw (< 100 ms, median of 9 moves) from the page's
@@ -156,6 +158,82 @@ async function misfitPlot(page, cal) {
         `the plot was drawn live (${plotted.live} points before the end), then redrawn from the final list`);
 }
 
+// The Patient step's files: a 3D recording (made by `breastsim record`)
+// fills the calibration's data and its fit is shown; a synthetic patient's
+// scan (`breastsim synthetic-patient`) becomes the patient's model, drawn in
+// 3D unmirrored, with the limits of a scanned breast said in the plan and
+// simulate steps; bad files are refused with the library's message.
+async function patientFiles(page, work, errors) {
+  const cases = path.dirname(measurements);
+  const rec = path.join(work, "recording.json");
+  execFileSync(program, ["-q", "record", path.join(cases, "default.toml"), "--seed", "7", "--mesh-size", "0.012",
+                         "--points", "200", "--out", rec], { stdio: "ignore" });
+  const bad = JSON.parse(fs.readFileSync(rec, "utf8"));
+  bad.postures[0].points[0] = bad.postures[0].points[0].map((x) => 1e3 * x); // millimetres written as metres
+  fs.writeFileSync(path.join(work, "bad_recording.json"), JSON.stringify(bad));
+  await page.$eval("#patient", (e) => e.scrollIntoView());
+  await page.setInputFiles("#measure-file", path.join(work, "bad_recording.json"));
+  await page.waitForFunction(() => /recording/.test(document.querySelector("#measure-message").textContent));
+  const refused = await page.textContent("#measure-message");
+  check(/bad_recording.json: recording 'recording': key 'postures\[0\].points/.test(refused),
+        `a recording in millimetres is refused with the library's message (${refused.slice(0, 110)} ...)`);
+  await page.setInputFiles("#measure-file", rec);
+  await page.waitForFunction(() => /accepted/.test(document.querySelector("#measure-message").textContent));
+  check(/600 skin points in standing \(200\), supine \(200\), all_fours \(200\)/.test(await page.textContent("#measure-message")),
+        "the recording is accepted: 600 points in three postures");
+  await page.screenshot({ path: path.join(shots, "1-recording.png") });
+  await page.fill("#cal-fit", "mu");
+  await page.waitForFunction(() => !document.querySelector("#cal-run").disabled);
+  await page.click("#cal-run");
+  await page.waitForSelector("#cal-recording", { timeout: 300000 });
+  const cal = await page.evaluate(async () =>
+    (await fetch("/api/jobs/" + localStorage.getItem("breastsim.job.calibrate"))).json());
+  const mu = cal.summary.parameters[0];
+  check(cal.options.data === "recording" && cal.summary.data === "recording" &&
+        await page.textContent('[data-key="fitted-mu"]') === String(+mu.fitted.toPrecision(4)) &&
+        /standing \d+\.\d\d mm/.test(await page.textContent("#cal-recording")),
+        `the calibration fits the recording's points: the page shows the API's mu = ${+mu.fitted.toPrecision(4)} Pa ` +
+        `[${mu.interval_95.map((x) => +x.toPrecision(4)).join(", ")}] and the distance per posture`);
+  await page.$eval("#calibrate", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, "2-calibrated-recording.png") });
+
+  execFileSync(program, ["-q", "synthetic-patient", "--volume", "400", "--ptosis", "0.3", "--lateral", "0.1",
+                         "--asymmetry", "0.15", "--mesh-size", "0.01", "--posture", "standing",
+                         "--out", path.join(work, "patient")], { stdio: "ignore" });
+  const stl = path.join(work, "patient", "scan.stl");
+  await page.$eval("#patient", (e) => e.scrollIntoView());
+  await page.selectOption("#scan-units", "m");
+  const before = errors.length;
+  await page.setInputFiles("#scan-file", stl);
+  await page.waitForFunction(() => /wrong units/.test(document.querySelector("#scan-message").textContent));
+  // The refused upload is answered 400, which Chromium logs as a failed resource: that one line, and nothing else.
+  await page.waitForTimeout(200);
+  const logged = errors.splice(before);
+  check(/scan.stl: .*wrong units\? the scan spans/.test(await page.textContent("#scan-message")) &&
+        logged.length === 1 && /status of 400/.test(logged[0]),
+        "a scan in the wrong unit is refused with scan-model's message (HTTP 400, the browser's only log line)");
+  await page.selectOption("#scan-units", "mm");
+  await page.fill("#scan-mesh", "10");
+  await page.setInputFiles("#scan-file", stl);
+  await page.waitForSelector("#scan-table", { timeout: 300000 });
+  await page.waitForFunction(() => window.breastsimApp.scanShown, null, { timeout: 30000 });
+  const id = await page.evaluate(() => localStorage.getItem("breastsim.job.scan"));
+  const scan = await page.evaluate(async (i) => (await fetch("/api/jobs/" + i)).json(), id);
+  const standing = await page.evaluate(async (i) => (await fetch(`/api/jobs/${i}/files/surface_standing.json`)).json(), id);
+  const shown = await page.evaluate(() => window.breastsimApp.scanShown);
+  check(scan.state === "done" && await page.textContent('[data-key="scan-points"]') === String(scan.summary.scan.points) &&
+        await page.textContent('[data-key="scan-volume"]') === scan.summary.scan.volume_cm3.toFixed(1),
+        `the scan becomes the patient's model (${scan.summary.scan.points} points, ${scan.summary.scan.volume_cm3.toFixed(1)} cm³, ` +
+        `neutral state in ${scan.summary.neutral.iterations} iterations, ${scan.summary.postures.length} postures)`);
+  check(shown.name === "surface_standing.json" && !shown.mirrored && standing.mirror_x === false &&
+        shown.vertices === standing.vertices.length / 3,
+        `the page draws the scanned breast in 3D as it is, not mirrored (${shown.vertices} vertices)`);
+  check(!(await page.$eval("#plan-scan-note", (e) => e.hidden)) &&
+        /surgery on the scanned breast is not supported yet/.test(await page.textContent("#simulate-scan-note")),
+        "the plan and simulate steps say what the scanned breast cannot do yet");
+  await page.screenshot({ path: path.join(shots, "1-scan.png") });
+}
+
 async function walk(page, errors) {
   const firstView = await firstViews(page, 5);
   check(errors.length === 0, "no console errors on load" + (errors.length ? ": " + errors : ""));
@@ -271,6 +349,12 @@ async function walk(page, errors) {
   const [tar] = await Promise.all([page.waitForEvent("download"), page.click("#export-folder")]);
   check(fs.statSync(await tar.path()).size > 10240, "the result folder downloads as one archive");
   check(/a_deg = 30(\.0)?\s/.test(toml) && new RegExp(`mu = ${mu.fitted.toPrecision(6).slice(0, 5)}`).test(toml) && /mesh_size = 0.012\s/.test(toml) && /names = \[ 'standing'(, 'supine')? \]/.test(toml), "the exported case file holds the plan");
+  const work = fs.mkdtempSync(path.join(os.tmpdir(), "breastsim-files-"));
+  try {
+    await patientFiles(page, work, errors);
+  } finally {
+    fs.rmSync(work, { recursive: true, force: true });
+  }
   check(errors.length === 0, "no console errors after the walk" + (errors.length ? ": " + errors : ""));
   fs.writeFileSync(path.join(shots, "timings.json"), JSON.stringify({ first_view_ms: firstView, slider_redraw_ms: times,
     first_view_median_ms: median(firstView), slider_redraw_median_ms: median(times) }));

@@ -99,6 +99,46 @@ print("ok: the calibration job's fit equals the CLI's (%s)" % ", ".join(
 PY
 
 # A failing solve and a crashing job process (SIGKILL) end their jobs, not the server.
+# The Patient step's files: a recording (calibrate fits its points) and a scan (scan-model ->
+# neutral-state -> simulate), each against the CLI on the same file.
+uploads() { /usr/bin/python3 "$HERE/upload_checks.py" "$port" "$@"; }
+"$BIN" -q record "$CASES/default.toml" --seed 7 --mesh-size 0.012 --points 200 --out "$work/rec.json"
+uploads recording "$work/rec.json" "$work/data" "$work/rec_job.json"
+"$BIN" -q calibrate "$work/rec.json" --set geometry.mesh_size=0.012 --fit mu --out "$work/cli-rec" > /dev/null
+"$BIN" -q synthetic-patient --volume 400 --ptosis 0.3 --lateral 0.1 --asymmetry 0.15 --mesh-size 0.01 \
+  --posture standing --out "$work/patient" > /dev/null
+uploads scan "$work/patient/scan.stl" "$work/data" "$work/scan_job.json"
+"$BIN" -q scan-model "$work/patient/scan.stl" --units mm --posture standing --mesh-size 0.01 --out "$work/cli-scan" > /dev/null
+"$BIN" -q neutral-state "$work/cli-scan/case.toml" --posture standing --out "$work/cli-neutral" > /dev/null
+"$BIN" -q simulate "$work/cli-neutral/case.reference.toml" --set postures.names=standing,supine,all_fours \
+  --out "$work/cli-sim" > /dev/null
+/usr/bin/python3 - "$work" <<'PY'
+import json, sys
+w = sys.argv[1]
+load = lambda *p: json.load(open("/".join((w,) + p)))
+rec_job, cli = load("rec_job.json"), load("cli-rec", "diagnosis.json")["final"]["parameters"][0]
+app = rec_job["summary"]["parameters"][0]
+assert abs(app["fitted"] / cli["value"] - 1) < 1e-9 and all(
+    abs(a / b - 1) < 1e-9 for a, b in zip(app["interval_95"], cli["interval95"])), (app, cli)
+print("ok: the recording's calibration equals the CLI's (mu = %.6g Pa, [%.4g, %.4g])" % (app["fitted"], *app["interval_95"]))
+scan_id = load("scan_job.json")["id"]
+job = "data/jobs/" + scan_id
+for app_file, cli_file, keys in [("model/summary.json", "cli-scan/summary.json", ("scan_points", "tetrahedra", "volume_m3", "fit_rms_m")),
+                                 ("neutral/summary.json", "cli-neutral/summary.json", ("converged",))]:
+    a, b = load(job, app_file), load(cli_file)
+    assert all(a[k] == b[k] for k in keys), (app_file, [(k, a[k], b[k]) for k in keys])
+    if "iterations" in a:
+        assert a["iterations"] == b["iterations"], "neutral-state iterations differ"
+a, b = load(job, "result/summary.json")["postures"], load("cli-sim", "summary.json")["postures"]
+assert [p["posture"] for p in a] == [p["posture"] for p in b]
+for p, q in zip(a, b):
+    for k in ("projection_m", "z_min_m", "volume_m3"):
+        assert abs(p[k] - q[k]) <= 1e-9 * max(1, abs(q[k])), (p["posture"], k, p[k], q[k])
+print("ok: the scan job's model, neutral state and postures equal scan-model, neutral-state and simulate "
+      "on the same file (%d tetrahedra, standing projection %.2f mm)" % (load(job, "model/summary.json")["tetrahedra"],
+                                                                       1e3 * a[0]["projection_m"]))
+PY
+
 checks failures | tee "$work/failures.txt"
 victim=$(tail -1 "$work/failures.txt")
 job_pid=$(pgrep -f -- "--run-job $work/data/jobs/$victim" | head -1)
@@ -120,7 +160,8 @@ start_server --workers 2
 checks persisted "$work/job.json"
 checks parallel
 # Only what the server wrote is in the data folder.
-extra=$(find "$work/data" -mindepth 1 -maxdepth 1 ! -name jobs ! -name .breastsim-app)
+extra=$(find "$work/data" -mindepth 1 -maxdepth 1 ! -name jobs ! -name uploads ! -name .breastsim-app)
+[ -z "$(ls -A "$work/data/uploads")" ] || { echo "files left in --data/uploads"; exit 1; }
 [ -z "$extra" ] || { echo "unexpected in --data: $extra"; exit 1; }
 stop_server
 echo "server.sh: all checks passed"

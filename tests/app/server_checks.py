@@ -3,7 +3,7 @@
 Usage: server_checks.py PORT PHASE [ARGS...]
   refusals                    malformed, unknown, out-of-range, oversized, traversal, CORS, Host, sweeps
   plan                        keys, validate, incision check, measurements check
-  surgery OVERRIDES_JSON OUT  run a surgery job and its report; write its record and summary.json to OUT
+  surgery OVERRIDES_JSON OUT  run a surgery job (its progress channel) and its report; write its record and summary.json to OUT
   calibrate MEASUREMENTS OUT  refused fit names; a small calibration; its record and report to OUT
   failures                    a failing solve; starts a job and prints its id (to be killed)
   crashed ID FOLDER           the killed job is failed, its staging folder gone, the server up
@@ -19,6 +19,7 @@ import sys
 import time
 
 from api_client import Api
+from upload_checks import surgery_progress
 
 
 def check(cond, what):
@@ -103,8 +104,15 @@ def plan(api):
 def surgery(api, overrides, out):
     s, r = api.json("POST", "/api/jobs", {"kind": "surgery", "overrides": json.loads(overrides)})
     check(s == 202, f"job accepted ({s} {r})")
-    rec = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
+    seen = []  # (progress, stage) of the record while the job runs
+    while True:
+        rec = api.wait(r["id"], ("running", "done", "failed", "cancelled"), 600)
+        if rec["state"] != "running":
+            break
+        seen.append((rec["progress"], rec["stage"]))
+        time.sleep(0.1)
     check(rec["state"] == "done", f"surgery job done ({rec['state']}: {rec['error']})")
+    surgery_progress(api, r["id"], seen, json.loads(overrides)["postures.names"])
     s, _, data = api.raw("GET", f"/api/jobs/{r['id']}/files/summary.json")
     check(s == 200, "summary.json served from the job's whitelist")
     s, h, tar = api.raw("GET", f"/api/jobs/{r['id']}/result.tar")

@@ -6,9 +6,10 @@ import { View3D, POINT_COLOURS } from "/view3d.js";
 import { reportPictures, usesFit } from "/report.js";
 import { SWEEP_KEYS, sweepPictures, sweepRequest, sweepTable } from "/sweep.js";
 import { evaluationStage, misfitCaption, misfitPlotSvg } from "/misfit_plot.js";
+import { RECORDING_FORMAT, SCAN_LIMITS, recordingText, scanSummaryHtml, scanUploadPath, uploadScan } from "/patient_files.js";
 
 const $ = (s) => document.querySelector(s);
-const state = { keys: {}, job: null, incisionOk: false, measurements: null, surfaces: {},
+const state = { keys: {}, job: null, incisionOk: false, measurements: null, recording: null, scan: null, surfaces: {},
                 evaluations: { id: null, list: [] } };
 const app = (window.breastsimApp = { ready: false, lastRedrawMs: null, redraws: 0, reports: 0, sweeps: 0, errors: [] });
 let view;
@@ -149,6 +150,7 @@ function measurementProblem(input) {
 }
 
 function measurementTyped(input) {
+  state.recording = null; // the form's measurements again
   const p = measurementProblem(input);
   input.classList.toggle("bad", !!p);
   message($("#measure-message"), p);
@@ -187,6 +189,7 @@ function loadMeasurementFile(ev) {
   file.text().then((text) => {
     let doc;
     try { doc = JSON.parse(text); } catch (e) { return message($("#measure-message"), `${file.name}: not JSON`); }
+    if (doc && doc.format === RECORDING_FORMAT) return loadRecording(doc, file.name);
     const set = (id, m) => { if (typeof m === "number") $("#" + id).value = +(1e3 * m).toPrecision(6); };
     set("m-base_perimeter", doc.base_perimeter);
     set("m-breast_height", doc.breast_height);
@@ -200,6 +203,41 @@ function loadMeasurementFile(ev) {
       input.classList.toggle("bad", !!measurementProblem(input));
     checkMeasurements();
   });
+}
+
+// A 3D surface recording: checked by the server; the calibration then fits its points.
+async function loadRecording(doc, name) {
+  const r = await api("POST", "/api/recording/check", doc), ok = r.status === 200 && r.json.ok;
+  state.recording = ok ? doc : null;
+  $("#cal-run").disabled = !canRun("calibrate");
+  message($("#measure-message"), ok ? recordingText(name, r.json) : `${name}: ${r.json.error}`, ok);
+}
+
+// A skin scan: uploaded with its unit and posture; the server checks it and queues its scan job.
+async function loadScan(ev) {
+  const file = ev.target.files[0];
+  if (!file) return;
+  message($("#scan-message"), `uploading ${file.name} ...`, true);
+  const r = await uploadScan(file, scanUploadPath(file, $("#scan-units").value, $("#scan-posture").value, $("#scan-mesh").value));
+  ev.target.value = "";
+  if (r.status !== 202) return message($("#scan-message"), `${file.name}: ${r.json.error}`);
+  message($("#scan-message"), `${file.name}: accepted, building the model`, true);
+  attach("scan", r.json.id, true);
+}
+
+function showScan(job) {
+  state.scan = job;
+  message($("#scan-message"), `the scanned breast's model is ready (job ${job.id.slice(0, 6)})`, true);
+  $("#scan-result").innerHTML = scanSummaryHtml(job);
+  for (const id of ["#plan-scan-note", "#simulate-scan-note"]) {
+    $(id).textContent = SCAN_LIMITS;
+    $(id).hidden = false;
+  }
+  $("#view-mode").value = "scan";
+  $("#view-posture").innerHTML = job.summary.postures.map((p) => `<option>${p.posture}</option>`).join("");
+  $("#view-posture").value = job.options.scan.posture;
+  view.framed = null;
+  return showSurfaces();
 }
 
 // ---- Plan: sliders for a, s, h, d; points and planes drawn as they move ----
@@ -287,11 +325,15 @@ const PANELS = {
                message: "#cal-message" },
   sweep: { run: "#sweep-run", cancel: "#sweep-cancel", progress: "#sweep-progress", stage: "#sweep-stage",
            message: "#sweep-message" },
+  scan: { run: "#scan-file", cancel: "#scan-cancel", progress: "#scan-progress", stage: "#scan-stage",
+          message: "#scan-message" },
 };
-const jobs = { surgery: null, calibrate: null, sweep: null };
+const jobs = { surgery: null, calibrate: null, sweep: null, scan: null };
 
 function canRun(kind) {
-  return jobs[kind] === null && (kind === "calibrate" ? state.measurements !== null : state.incisionOk);
+  if (kind === "scan") return jobs.scan === null;
+  return jobs[kind] === null &&
+    (kind === "calibrate" ? state.measurements !== null || state.recording !== null : state.incisionOk);
 }
 
 async function submit(kind, body) {
@@ -309,7 +351,8 @@ function runSurgery() {
 function runCalibration() {
   const overrides = caseOverrides();
   for (const k of Object.keys(overrides)) if (k.startsWith("incision.")) delete overrides[k];
-  submit("calibrate", { kind: "calibrate", overrides, measurements: state.measurements,
+  const data = state.recording ? { recording: state.recording } : { measurements: state.measurements };
+  submit("calibrate", { kind: "calibrate", overrides, ...data,
                         fit: $("#cal-fit").value, max_evals: Number($("#cal-evals").value) });
 }
 
@@ -338,6 +381,9 @@ async function followEvaluations(job) {
     const all = await api("GET", `/api/jobs/${job.id}`);
     e.list = all.status === 200 ? all.json.evaluations || [] : e.list;
   } else e.list = e.list.concat((job.evaluations || []).filter((x) => x.n > cursor));
+  if (job.options.data === "recording")
+    return void ($("#cal-plot").innerHTML = '<p class="hint" id="cal-plot-caption">A recording\'s fit (the point-to-skin ' +
+      "fit of the diagnosis) reports no evaluations while it runs; its result gives the distance per posture.</p>");
   $("#cal-plot").innerHTML = misfitPlotSvg(e.list, job.options.max_evals, final) +
     `<p class="hint" id="cal-plot-caption">${misfitCaption(e.list, final)}</p>`;
   app.plotted = { id: job.id, points: e.list.length, final,
@@ -359,7 +405,7 @@ async function poll(kind) {
   jobs[kind] = null;
   $(panel.cancel).disabled = true;
   $(panel.run).disabled = !canRun(kind);
-  if (job.state === "done") await { surgery: showResult, calibrate: showCalibration, sweep: showSweep }[kind](job);
+  if (job.state === "done") await { surgery: showResult, calibrate: showCalibration, sweep: showSweep, scan: showScan }[kind](job);
   else message($(panel.message), `${job.state}: ${job.error}`);
   if (kind === "surgery") refreshPlans();
 }
@@ -399,7 +445,9 @@ function showCalibration(job) {
     "<table><thead><tr><th>parameter</th><th>start</th><th>fitted</th><th>95 % interval</th><th>identifiability</th></tr></thead><tbody>" +
     s.parameters.map((p) => `<tr><td>${p.name} [${p.unit}]</td><td>${g4(p.initial)}</td><td data-key="fitted-${p.name}">${g4(p.fitted)}</td>` +
       `<td>${g4(p.interval_95[0])} – ${g4(p.interval_95[1])}</td><td style="text-align:left">${p.identifiability}</td></tr>`).join("") +
-    '</tbody></table><button id="cal-use">Use the fitted values</button>';
+    "</tbody></table>" + (s.data === "recording" ? `<p id="cal-recording">Fitted to the recording's points: RMS distance ` +
+      s.postures.map((p) => `${p.posture} ${p.rms_mm.toFixed(2)} mm`).join(", ") + ` (noise ${s.noise_sigma_mm} mm).</p>` : "") +
+    '<button id="cal-use">Use the fitted values</button>';
   $("#cal-use").addEventListener("click", () => {
     applyOverrides(state.fitted);
     validateCase();
@@ -452,10 +500,25 @@ async function showSurfaces() {
   const mode = $("#view-mode").value;
   $("#view-legend").textContent = { plan: "red: tissue removed; green: P1, P1'; violet: P2",
     side: "in profile: before (skin colour, left), after (blue, right)",
-    overlay: "in profile: before (translucent), after (blue)" }[mode];
+    overlay: "in profile: before (translucent), after (blue)",
+    scan: "the scanned breast (full, not mirrored) simulated in the chosen posture" }[mode];
+  if (mode === "scan") return showScanSurface();
   if (mode === "plan" || !state.result) return checkIncision();
   const p = $("#view-posture").value;
   view.showSurfaces(await surface(`preop_surface_${p}.json`), await surface(`postop_surface_${p}.json`), mode);
+}
+
+async function showScanSurface() {
+  if (!state.scan) return;
+  const name = `surface_${$("#view-posture").value}.json`, key = `scan:${state.scan.id}:${name}`;
+  if (!state.surfaces[key]) {
+    const r = await api("GET", `/api/jobs/${state.scan.id}/files/${name}`);
+    state.surfaces[key] = r.status === 200 ? r.json : null;
+  }
+  const doc = state.surfaces[key];
+  if (!doc) return;
+  view.showScan(doc);
+  app.scanShown = { id: state.scan.id, name, vertices: view.drawnVertices(), mirrored: doc.mirror_x !== false };
 }
 
 // ---- Compare plans, export ----
@@ -530,6 +593,8 @@ async function main() {
   $("#sweep-second").value = "incision.h";
   $("#sweep-run").addEventListener("click", runSweep);
   $("#sweep-cancel").addEventListener("click", () => cancel("sweep"));
+  $("#scan-file").addEventListener("change", loadScan);
+  $("#scan-cancel").addEventListener("click", () => cancel("scan"));
   $("#view-mode").addEventListener("change", showSurfaces);
   $("#view-posture").addEventListener("change", showSurfaces);
   $("#export-case").addEventListener("click", exportCase);
@@ -538,7 +603,7 @@ async function main() {
     download("measurements.json", JSON.stringify(measurementDocument(), null, 2), "application/json"));
   await showSurfaces();
   await refreshPlans();
-  for (const kind of ["calibrate", "surgery", "sweep"]) { // a reload reattaches to the running (or finished) jobs
+  for (const kind of ["calibrate", "surgery", "sweep", "scan"]) { // a reload reattaches to the running (or finished) jobs
     const id = localStorage.getItem("breastsim.job." + kind);
     if (id) attach(kind, id, false);
   }

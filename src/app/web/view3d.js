@@ -106,8 +106,8 @@ export class View3D {
     this.controls.update();
   }
 
-  // Skin surfaces (surface_<posture>.json documents), mirrored to the full
-  // breast, seen in profile: `mode` "side" (pre, then post further out of the
+  // Skin surfaces (surface_<posture>.json documents; a half model mirrored to
+  // the full breast), seen in profile: `mode` "side" (pre, then post further out of the
 // chest) or "overlay".
   showSurfaces(pre, post, mode) {
     this.clear();
@@ -116,6 +116,23 @@ export class View3D {
     if (post) this.content.add(surfaceMesh(post, POST, shift / 2, 1));
     if (this.framed !== mode) this.frame(new THREE.Vector3(-1, 0.1, 0)); // in profile, pre left: projection and ptosis
     this.framed = mode;
+    this.render();
+  }
+
+  // The number of vertices drawn (meshes of the content).
+  drawnVertices() {
+    let n = 0;
+    this.content.traverse((o) => { if (o.isMesh) n += o.geometry.getAttribute("position").count; });
+    return n;
+  }
+
+  // A scanned (full) breast's skin, a surface_<posture>.json document, seen
+  // obliquely from the front and the side.
+  showScan(doc) {
+    this.clear();
+    this.content.add(surfaceMesh(doc, SKIN, 0, 1));
+    if (this.framed !== "scan") this.frame(new THREE.Vector3(1.1, 0.3, 0.8)); // from the front and the side: its projection
+    this.framed = "scan";
     this.render();
   }
 }
@@ -226,15 +243,18 @@ function baseRing(R) {
   return new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: 0x555555 }));
 }
 
+// A half model (mirror_x, the default) is drawn with its mirror image, a full
+// breast (mirror_x false: a scan) as it is.
 function surfaceMesh(doc, colour, shift, opacity) {
   const v = doc.vertices, t = doc.triangles, pos = [];
-  for (const side of [1, -1])
+  const sides = doc.mirror_x === false ? [1] : [1, -1];
+  for (const side of sides)
     for (let i = 0; i < v.length; i += 3) {
       const p = toScene([side * v[i], v[i + 1], v[i + 2]]);
       pos.push(p.x, p.y, p.z + shift);
     }
   const n = v.length / 3, idx = [...t];
-  for (let k = 0; k < t.length; k += 3) idx.push(t[k] + n, t[k + 2] + n, t[k + 1] + n);
+  if (sides.length === 2) for (let k = 0; k < t.length; k += 3) idx.push(t[k] + n, t[k + 2] + n, t[k + 1] + n);
   const g = new THREE.BufferGeometry();
   g.setAttribute("position", new THREE.Float32BufferAttribute(pos, 3));
   g.setIndex(idx);
