@@ -1,15 +1,17 @@
 // Nearly incompressible tissue (docs/VERIFICATION.md, "Nearly incompressible
 // tissue"): the mixed Taylor-Hood P2-P1 formulation against the displacement
-// formulation, on a manufactured divergence-free solution at lambda / mu =
-// 1e3 (verification/mms_mixed) and on the pressurised thick sphere in the
+// formulation, on a manufactured solution at lambda / mu = 1e3
+// (verification/mms_mixed) and on the pressurised thick sphere in the
 // incompressible limit (verification/sphere_bench, closed form).
 //
 // MMS, nested red-refined 16 mm cap (566, 4528, 36224 cells), lambda/mu = 1e3,
-// measured (IncompressibleMms.LongMixedOrders, ~3 min):
-//   mixed P2-P1: u L2 3.196, 3.252; u H1 2.145, 2.172; p L2 2.015, 2.045
-//   displacement P1: u L2 0.843, 1.029; u H1 0.517, 0.651 (locking)
-// The mixed u orders lie above theory (3, 2) on these nested meshes at high
-// lambda / mu; at lambda = mu the same code gives 3.03 / 1.99 (level 0 -> 1).
+// default u_ex (A = 6e-5 m, L = 0.16 m, kappa = 1), measured
+// (IncompressibleMms.LongMixedOrdersAtLambdaOverMu1e3, ~3 min):
+//   mixed P2-P1: u L2 3.019, 3.037; u H1 1.993, 2.009; p L2 1.998, 2.057;
+//   least-squares slopes 3.028, 2.001, 2.027.
+// The divergence-free u_ex with a large quadratic pressure (kappa = 0, A =
+// 3e-4 m, L = 0.08 m) gives u orders above theory on these meshes (3.196 /
+// 2.145 from level 0 to 1): IncompressibleMms.LongSurplusFollowsThePressure.
 #include "config.hpp"
 #include "fixtures.hpp"
 #include "errors.hpp"
@@ -31,27 +33,46 @@ Config tissue_at(double ratio)
   return c;
 }
 
-IncompressibleMmsStudy run(const Config& c, bool mixed, int order, int levels)
+IncompressibleMmsStudy run(const Config& c, bool mixed, int order, int levels,
+                           const IncompressibleMmsSetup& setup = {})
 {
-  auto s = incompressible_mms_study(c, mixed, order, 0.016, levels, MPI_COMM_WORLD);
+  auto s = incompressible_mms_study(c, mixed, order, 0.016, levels, MPI_COMM_WORLD, setup);
   std::printf("%s", mms_table(s).c_str());
   return s;
 }
 
-/// Orders at least theory - 0.1, the pressure's within 0.1 of 2.
+/// The divergence-free u_ex whose pressure is the quadratic part of J:
+/// p_ex ~ lambda (A / L)^2 = 3.75 mu |grad u_ex| at A = 3e-4 m, L = 0.08 m.
+IncompressibleMmsSetup quadratic_pressure(double amplitude, double kappa = 0)
+{
+  IncompressibleMmsSetup setup;
+  setup.amplitude = amplitude;
+  setup.length = 0.08;
+  setup.kappa = kappa;
+  return setup;
+}
+
+/// Every observed order (and, from 3 levels, the least-squares slope)
+/// within 0.1 of theory: u L2 3, u H1 2, p L2 2.
 void expect_mixed_orders(const IncompressibleMmsStudy& s)
 {
   for (std::size_t i = 0; i < s.order_l2.size(); ++i)
   {
-    EXPECT_GT(s.order_l2[i], 2.9);
-    EXPECT_GT(s.order_h1[i], 1.9);
+    EXPECT_NEAR(s.order_l2[i], 3.0, 0.1);
+    EXPECT_NEAR(s.order_h1[i], 2.0, 0.1);
     EXPECT_NEAR(s.order_p[i], 2.0, 0.1);
-    EXPECT_LT(s.levels[i + 1].error_h1, s.levels[i].error_h1);
+  }
+  if (s.levels.size() >= 3)
+  {
+    EXPECT_NEAR(s.fit_l2, 3.0, 0.1);
+    EXPECT_NEAR(s.fit_h1, 2.0, 0.1);
+    EXPECT_NEAR(s.fit_p, 2.0, 0.1);
   }
 }
 } // namespace
 
-// Two levels (~10 s): level 0 -> 1 at lambda / mu = 1e3.
+// Two levels (~8 s): level 0 -> 1 at lambda / mu = 1e3 (measured 3.019,
+// 1.993, 1.998; the tolerance 0.1 is the issue's).
 TEST(IncompressibleMms, MixedOrdersAtLambdaOverMu1e3)
 {
   const auto s = run(tissue_at(1e3), true, 2, 2);
@@ -59,7 +80,7 @@ TEST(IncompressibleMms, MixedOrdersAtLambdaOverMu1e3)
   expect_mixed_orders(s);
 }
 
-// Three levels (~3 min; the finest has 168k unknowns, LU).
+// Three levels (~3 min; the finest has 168k unknowns, LU, 4.1 GB).
 TEST(IncompressibleMms, LongMixedOrdersAtLambdaOverMu1e3)
 {
   const auto s = run(tissue_at(1e3), true, 2, 3);
@@ -67,13 +88,33 @@ TEST(IncompressibleMms, LongMixedOrdersAtLambdaOverMu1e3)
   expect_mixed_orders(s);
 }
 
+// Where the pressure dominates the stress at a short length scale, the
+// velocity error converges faster than theory from level 0 to 1 (the part
+// set by the pressure's approximation outweighs u's own): the
+// divergence-free u_ex with the quadratic pressure at A = 3e-4 m; a tenth
+// of the amplitude (p_ex / 100, u_ex / 10) is at theory; a volumetric part
+// (kappa = 10) makes the pressure large again and the surplus returns.
+TEST(IncompressibleMms, LongSurplusFollowsThePressure)
+{
+  const auto c = tissue_at(1e3);
+  const auto large = run(c, true, 2, 2, quadratic_pressure(3e-4));
+  const auto small = run(c, true, 2, 2, quadratic_pressure(3e-5));
+  const auto volumetric = run(c, true, 2, 2, quadratic_pressure(3e-5, 10));
+  EXPECT_GT(large.order_l2[0], 3.1);
+  EXPECT_GT(large.order_h1[0], 2.1);
+  EXPECT_NEAR(small.order_l2[0], 3.0, 0.1);
+  EXPECT_NEAR(small.order_h1[0], 2.0, 0.05);
+  EXPECT_GT(volumetric.order_h1[0], 2.1);
+}
+
 // P1 displacement at lambda / mu = 1e3 locks: its orders stay far below 2
 // and 1 over three levels, and on 36224 cells its H1 error is larger than
-// the mixed formulation's on 566 cells.
+// the mixed formulation's on 566 cells (u_ex with the quadratic pressure,
+// A = 3e-4 m).
 TEST(IncompressibleMms, P1DisplacementLocksAtLambdaOverMu1e3)
 {
-  const auto d = run(tissue_at(1e3), false, 1, 3);
-  const auto m = run(tissue_at(1e3), true, 2, 1);
+  const auto d = run(tissue_at(1e3), false, 1, 3, quadratic_pressure(3e-4));
+  const auto m = run(tissue_at(1e3), true, 2, 1, quadratic_pressure(3e-4));
   EXPECT_LT(d.order_l2.back(), 1.5);
   EXPECT_LT(d.order_h1.back(), 0.8);
   EXPECT_GT(d.levels.back().rel_h1, 5 * m.levels.front().rel_h1);
@@ -209,3 +250,4 @@ TEST(MixedModel, JacobianTaylorRemainder)
     EXPECT_NEAR(std::log2(e[k - 1] / e[k]), 2.0, 0.2);
   }
 }
+

@@ -108,18 +108,41 @@ int solve_to_roundoff(ResidualNewton& newton, bool mixed, int refinements)
                                  refinements, nr.residual / r0, nr.lu_failed ? ", LU failed" : ""));
   return nr.iterations;
 }
+/// Least-squares slope of ln e against ln h: sum (x - x_mean)(y - y_mean) /
+/// sum (x - x_mean)^2 with x = ln h, y = ln e.
+double log_log_slope(const std::vector<IncompressibleMmsLevel>& levels,
+                     double IncompressibleMmsLevel::*error)
+{
+  double mx = 0, my = 0;
+  for (const auto& L : levels)
+  {
+    mx += std::log(L.h_eff) / double(levels.size());
+    my += std::log(L.*error) / double(levels.size());
+  }
+  double sxy = 0, sxx = 0;
+  for (const auto& L : levels)
+  {
+    sxy += (std::log(L.h_eff) - mx) * (std::log(L.*error) - my);
+    sxx += (std::log(L.h_eff) - mx) * (std::log(L.h_eff) - mx);
+  }
+  return sxy / sxx;
+}
 } // namespace
 
 IncompressibleMmsLevel solve_incompressible_mms(const Config& c, bool mixed, int order,
-                                                double mesh_size, int refinements, MPI_Comm comm)
+                                                double mesh_size, int refinements, MPI_Comm comm,
+                                                const IncompressibleMmsSetup& setup)
 {
   check_request(c, mixed, order);
   Stopwatch stopwatch("incompressible MMS level");
   const IncompressibleForms uf = incompressible_forms(mixed, order);
-  TaggedDolfinxMesh m = mms_level_mesh(c, order, mesh_size, refinements, comm, MmsMeshes::nested);
+  TaggedDolfinxMesh m = mms_level_mesh(c, order, mesh_size, refinements, comm, setup.meshes);
   auto W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(uf.space, uf.coefficient, m.mesh));
   auto w = std::make_shared<fem::Function<T>>(W);
-  const MmsConstants all = mms_constants(c);
+  MmsConstants all = mms_constants(c);
+  all["mms_amplitude"] = std::make_shared<fem::Constant<T>>(setup.amplitude);
+  all["mms_length"] = std::make_shared<fem::Constant<T>>(setup.length);
+  all["mms_kappa"] = std::make_shared<fem::Constant<T>>(setup.kappa);
   const std::map<std::string, std::shared_ptr<const fem::Constant<T>>> constants(all.begin(), all.end());
   const std::map<std::string, std::shared_ptr<const fem::Function<T>>> coefficients{{uf.coefficient, w}};
   auto create = [&](ufcx_form* f, int rank)
@@ -151,9 +174,11 @@ IncompressibleMmsLevel solve_incompressible_mms(const Config& c, bool mixed, int
 }
 
 IncompressibleMmsStudy incompressible_mms_study(const Config& c, bool mixed, int order,
-                                                double mesh_size, int levels, MPI_Comm comm)
+                                                double mesh_size, int levels, MPI_Comm comm,
+                                                const IncompressibleMmsSetup& setup)
 {
   IncompressibleMmsStudy s;
+  s.setup = setup;
   s.mixed = mixed;
   s.order = order;
   s.mesh_size = mesh_size;
@@ -163,7 +188,7 @@ IncompressibleMmsStudy incompressible_mms_study(const Config& c, bool mixed, int
   auto rate = [](double e0, double e1, double h0, double h1) { return std::log(e0 / e1) / std::log(h0 / h1); };
   for (int l = 0; l < levels; ++l)
   {
-    s.levels.push_back(solve_incompressible_mms(c, mixed, order, mesh_size, l, comm));
+    s.levels.push_back(solve_incompressible_mms(c, mixed, order, mesh_size, l, comm, setup));
     auto& L = s.levels.back();
     L.h_eff = std::cbrt(volume / double(L.cells));
     spdlog::info("incompressible MMS ({} P{}) level {}: {} cells, {} dofs, L2 {:.4e}, H1 {:.4e}, "
@@ -177,6 +202,13 @@ IncompressibleMmsStudy incompressible_mms_study(const Config& c, bool mixed, int
     if (mixed)
       s.order_p.push_back(rate(P.error_p, L.error_p, P.h_eff, L.h_eff));
   }
+  if (levels >= 2)
+  {
+    s.fit_l2 = log_log_slope(s.levels, &IncompressibleMmsLevel::error_l2);
+    s.fit_h1 = log_log_slope(s.levels, &IncompressibleMmsLevel::error_h1);
+    if (mixed)
+      s.fit_p = log_log_slope(s.levels, &IncompressibleMmsLevel::error_p);
+  }
   return s;
 }
 
@@ -187,7 +219,9 @@ nlohmann::json to_json(const IncompressibleMmsStudy& s)
   j["element_order"] = s.order;
   j["lambda_over_mu"] = s.lambda_over_mu;
   j["mesh_size"] = s.mesh_size;
-  j["meshes"] = "nested";
+  j["meshes"] = to_string(s.setup.meshes);
+  j["solution"] = {{"amplitude_m", s.setup.amplitude}, {"length_m", s.setup.length},
+                   {"kappa", s.setup.kappa}};
   j["expected_order_l2"] = s.order + 1;
   j["expected_order_h1"] = s.order;
   if (s.mixed)
@@ -201,15 +235,25 @@ nlohmann::json to_json(const IncompressibleMmsStudy& s)
   j["order_l2"] = s.order_l2;
   j["order_h1"] = s.order_h1;
   j["order_p"] = s.order_p;
+  if (s.levels.size() >= 2)
+  {
+    j["fit_order_l2"] = s.fit_l2;
+    j["fit_order_h1"] = s.fit_h1;
+    if (s.mixed)
+      j["fit_order_p"] = s.fit_p;
+  }
   return j;
 }
 
 std::string mms_table(const IncompressibleMmsStudy& s)
 {
   std::string out = fmt::format(
-      "Incompressible MMS, {} P{}{} (lambda/mu = {:g}, nested meshes from {:g} m): expected L2 {}, H1 {}{}\n",
+      "Incompressible MMS, {} P{}{} (lambda/mu = {:g}, {} meshes from {:g} m, u_ex = curl psi "
+      "+ kappa (mu/lambda) grad phi, A = {:g} m, L = {:g} m, kappa = {:g}): expected L2 {}, H1 {}{}\n",
       s.mixed ? "mixed" : "displacement", s.order, s.mixed ? "-P1" : "", s.lambda_over_mu,
-      s.mesh_size, s.order + 1, s.order, s.mixed ? fmt::format(", p {}", s.order) : "");
+      to_string(s.setup.meshes), s.mesh_size, s.setup.amplitude, s.setup.length, s.setup.kappa,
+      s.order + 1, s.order,
+      s.mixed ? fmt::format(", p {}", s.order) : "");
   out += fmt::format("{:>5} {:>8} {:>8} {:>10} {:>11} {:>11} {:>11} {:>7} {:>7} {:>7}\n", "level",
                      "cells", "dofs", "h_eff[mm]", "u L2 rel", "u H1 rel", "p L2 rel", "p(uL2)",
                      "p(uH1)", "p(pL2)");
@@ -222,6 +266,10 @@ std::string mms_table(const IncompressibleMmsStudy& s)
                        s.mixed ? fmt::format("{:.4e}", L.rel_p) : "-", o(s.order_l2), o(s.order_h1),
                        o(s.order_p));
   }
+  if (s.levels.size() >= 2)
+    out += fmt::format("least-squares slopes over levels 0-{}: u L2 {:.3f}, u H1 {:.3f}{}\n",
+                       s.levels.size() - 1, s.fit_l2, s.fit_h1,
+                       s.mixed ? fmt::format(", p L2 {:.3f}", s.fit_p) : "");
   return out;
 }
 } // namespace breastsim

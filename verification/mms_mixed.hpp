@@ -17,6 +17,22 @@
 
 namespace breastsim
 {
+/// The manufactured field u_ex = curl psi + kappa (mu / lambda) grad phi
+/// (verification/forms/mms_mixed.py) and the mesh family: amplitude A and
+/// length scale L (|u_ex| ~ A, |grad u_ex| ~ A / L), the pressure p_ex =
+/// lambda (J - 1) ~ kappa mu A / L (linear in A) + lambda (A / L)^2 (the
+/// quadratic part of J, of length scale L / 2). The defaults reach the
+/// asymptotic orders on the 16 mm cap; where p_ex dominates the stress at a
+/// short length scale (e.g. kappa = 0, A = 3e-4 m, L = 0.08 m) the velocity
+/// error converges faster than theory on these meshes (docs/VERIFICATION.md).
+struct IncompressibleMmsSetup
+{
+  double amplitude = 6e-5; ///< A [m]
+  double length = 0.16;    ///< L [m]
+  double kappa = 1;        ///< weight of the volumetric part of u_ex
+  MmsMeshes meshes = MmsMeshes::nested;
+};
+
 struct IncompressibleMmsLevel
 {
   int refinements = 0;
@@ -35,19 +51,25 @@ struct IncompressibleMmsStudy
   int order = 2;                ///< displacement degree (mixed: 2, pressure 1)
   double lambda_over_mu = 0;
   double mesh_size = 0;
+  IncompressibleMmsSetup setup;
   std::vector<IncompressibleMmsLevel> levels;
   std::vector<double> order_l2, order_h1, order_p; ///< between consecutive levels
+  /// Least-squares slopes of ln e against ln h_eff over all levels (>= 2).
+  double fit_l2 = 0, fit_h1 = 0, fit_p = 0;
 };
 
 /// One level: the case's tissue.mu, tissue.lambda and base springs
-/// (registry defaults otherwise), nested mesh family. mixed needs order 2
+/// (registry defaults otherwise), the setup's solution and mesh family. mixed needs order 2
 /// and tissue.lambda > 0 (InputError naming the key otherwise). Collective.
 IncompressibleMmsLevel solve_incompressible_mms(const Config& c, bool mixed, int order,
-                                                double mesh_size, int refinements, MPI_Comm comm);
+                                                double mesh_size, int refinements, MPI_Comm comm,
+                                                const IncompressibleMmsSetup& setup = {});
 
-/// Levels 0 .. levels-1 and the observed orders log(e_i/e_i+1)/log(h_i/h_i+1).
+/// Levels 0 .. levels-1, the observed orders log(e_i/e_i+1)/log(h_i/h_i+1)
+/// and the least-squares slopes over all levels.
 IncompressibleMmsStudy incompressible_mms_study(const Config& c, bool mixed, int order,
-                                                double mesh_size, int levels, MPI_Comm comm);
+                                                double mesh_size, int levels, MPI_Comm comm,
+                                                const IncompressibleMmsSetup& setup = {});
 
 nlohmann::json to_json(const IncompressibleMmsStudy& s);
 std::string mms_table(const IncompressibleMmsStudy& s);

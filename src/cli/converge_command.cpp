@@ -1,5 +1,6 @@
 // `breastsim converge CASE.toml --levels N [--order 1,2] [--quantity ...]
-// [--stage preop|surgery] [--mms [--mms-meshes nested|split|remesh]]`:
+// [--stage preop|surgery] [--mms [--mms-meshes nested|split|remesh]
+// [--mms-length L --mms-amplitude A --mms-kappa K]]`:
 // mesh-convergence study of the case's standing posture, pre- or
 // post-operative (observed order,
 // Richardson extrapolation, GCI of the finest level) or, with --mms, the
@@ -7,15 +8,50 @@
 #include "config.hpp"
 #include "case_options.hpp"
 #include "convergence.hpp"
+#include "errors.hpp"
 #include "log.hpp"
 #include "strings.hpp"
 #include "command.hpp"
 #include "overrides.hpp"
+#include <fmt/format.h>
 #include <iostream>
 #include <memory>
 
 namespace breastsim::cli
 {
+
+namespace
+{
+/// --mms-length, --mms-amplitude, --mms-kappa: u_ex of the nearly
+/// incompressible MMS (verification/mms_mixed.hpp).
+void add_incompressible_mms_options(CLI::App* app, IncompressibleMmsSetup& setup)
+{
+  app->add_option("--mms-length", setup.length,
+                  "with --mms and tissue.formulation = mixed: length scale L [m] of u_ex = "
+                  "curl psi + kappa (mu / lambda) grad phi (0.001 .. 10)")
+      ->check(CLI::Range(1e-3, 10.0))
+      ->capture_default_str();
+  app->add_option("--mms-amplitude", setup.amplitude,
+                  "with --mms and tissue.formulation = mixed: amplitude A [m] of u_ex "
+                  "(1e-8 .. 0.01; |grad u_ex| ~ A / L)")
+      ->check(CLI::Range(1e-8, 1e-2))
+      ->capture_default_str();
+  app->add_option("--mms-kappa", setup.kappa,
+                  "with --mms and tissue.formulation = mixed: weight kappa of u_ex's volumetric "
+                  "part, pressure ~ kappa mu A / L (0 .. 100; 0: divergence-free)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+}
+
+/// The u_ex options belong to the mixed formulation's MMS: InputError otherwise.
+void check_incompressible_mms_options(const CLI::App& app, bool incompressible_mms)
+{
+  for (const char* option : {"--mms-length", "--mms-amplitude", "--mms-kappa"})
+    if (app.count(option) && !incompressible_mms)
+      throw InputError(fmt::format("{} = {}: only with --mms and tissue.formulation = \"mixed\"",
+                                   option, app.get_option(option)->as<std::string>()));
+}
+} // namespace
 
 Command add_converge_command(CLI::App& root)
 {
@@ -27,6 +63,7 @@ Command add_converge_command(CLI::App& root)
     OutputOption out;
     int levels = 3;
     bool mms = false;
+    IncompressibleMmsSetup incompressible;
   };
   auto o = std::make_shared<Options>();
   auto* app = root.add_subcommand(
@@ -58,15 +95,20 @@ Command add_converge_command(CLI::App& root)
                   "MMS mesh family: nested (red refinement of the gmsh mesh, default), split "
                   "(gmsh splitting, boundary snapped to the sphere), remesh (gmsh at "
                   "mesh_size / 2^l)");
-  return {app, [o]()
+  add_incompressible_mms_options(app, o->incompressible);
+  return {app, [o, app]()
           {
             Config c = load_case(o->case_file, o->sets);
+            const bool incompressible_mms =
+                o->mms && CaseOptions::from(c).formulation == TissueFormulation::mixed;
+            check_incompressible_mms_options(*app, incompressible_mms);
             ConvergeRequest r;
             r.levels = o->levels;
             r.orders = parse_orders(o->orders);
             r.quantities = split_list(o->quantities);
             r.mms = o->mms;
             r.mms_meshes = parse_mms_meshes(o->mms_meshes);
+            r.mms_incompressible = o->incompressible;
             r.stage = o->stage == "surgery" ? ConvergeStage::surgery : ConvergeStage::preop;
             r.refine = o->refine == "red" ? ConvergeRefinement::red : ConvergeRefinement::gmsh;
             const auto out = claim_output(o->out, "results/" + CaseOptions::from(c).name + "-convergence",

@@ -5,6 +5,7 @@
 // Grid Convergence Index of the finest level; optionally the MMS problem.
 #include "config.hpp"
 #include "mms.hpp"
+#include "mms_mixed.hpp"
 #include "output_target.hpp"
 #include <filesystem>
 #include <mpi.h>
@@ -95,6 +96,9 @@ struct ConvergeRequest
   std::vector<std::string> quantities;
   bool mms = false; ///< the manufactured-solution problem instead of the case's posture
   MmsMeshes mms_meshes = MmsMeshes::nested;
+  /// The nearly incompressible MMS's u_ex (tissue.formulation = mixed); its
+  /// mesh family is mms_meshes.
+  IncompressibleMmsSetup mms_incompressible;
   ConvergeStage stage = ConvergeStage::preop;
   ConvergeRefinement refine = ConvergeRefinement::gmsh;
 };

@@ -44,10 +44,12 @@ void run_mms(const Config& c, const ConvergeRequest& r, nlohmann::json& j, std::
   if (CaseOptions::from(c).formulation == TissueFormulation::mixed)
   {
     const double h = HalfCapSpec::from(c).mesh_size;
+    IncompressibleMmsSetup setup = r.mms_incompressible;
+    setup.meshes = r.mms_meshes;
     for (int k = -1; k < static_cast<int>(r.orders.size()); ++k)
     {
       const bool mixed = k < 0;
-      auto s = incompressible_mms_study(c, mixed, mixed ? 2 : r.orders[k], h, r.levels, comm);
+      auto s = incompressible_mms_study(c, mixed, mixed ? 2 : r.orders[k], h, r.levels, comm, setup);
       j["mms"].push_back(to_json(s));
       table += mms_table(s);
     }

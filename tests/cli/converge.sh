@@ -7,8 +7,9 @@
 # beyond the finest level; convergence.txt and a non-empty PNG are written.
 # --refine red gives the same level 0 and cell counts. Bad input: --levels 1,
 # an unknown quantity, a surgery quantity without --stage surgery, and
-# --refine red with it are rejected with a message naming the option and no
-# output folder.
+# --refine red with it, the incompressible MMS's --mms-kappa without the
+# mixed formulation and --mms-length 0 are rejected with a message naming the
+# option and no output folder.
 set -eu
 BIN="$1"; CASES="$2"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -76,4 +77,14 @@ out=$("$BIN" -q converge "$CASES/default.toml" --stage surgery --refine red --ou
 set -e
 echo "$out"
 [ "$rc" -eq 2 ] && echo "$out" | grep -q -- "--refine red: only with --stage preop" && [ ! -e "$work/bad" ]
+set +e
+out=$("$BIN" -q converge "$CASES/default.toml" --mms --mms-kappa 2 --out "$work/bad" 2>&1); rc=$?
+set -e
+echo "$out"
+[ "$rc" -eq 2 ] && echo "$out" | grep -q -- '--mms-kappa = 2: only with --mms and tissue.formulation = "mixed"' && [ ! -e "$work/bad" ]
+set +e
+out=$("$BIN" -q converge "$CASES/default.toml" --mms --mms-length 0 --out "$work/bad" 2>&1); rc=$?
+set -e
+echo "$out"
+[ "$rc" -eq 2 ] && echo "$out" | grep -q -- "--mms-length" && [ ! -e "$work/bad" ]
 echo "all converge checks passed"

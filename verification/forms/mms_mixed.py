@@ -11,16 +11,25 @@ wrinkles under the compression an isochoric field has somewhere).
 
 Weak-form MMS as in verification/forms/mms.py: R(w_h; v) - R(w_ex; v) = 0
 with the exact solution w_ex = (u_ex, p_ex), p_ex = lambda (J(u_ex) - 1).
-u_ex = curl psi is divergence-free (J - 1 = O(|grad u|^2) ~ 1e-5): the
-regime where a displacement discretisation locks as lambda / mu grows.
-psi = (psi_1, X psi_2, X psi_3) makes u_x = X (d_y psi_3 - d_z psi_2) vanish
-on X = 0 (the sliding symmetry).
+u_ex = curl psi + kappa (mu / lambda) grad phi: the curl part is
+divergence-free, the gradient part adds the volumetric strain J - 1 ~ kappa
+(mu / lambda) A / L, so that p_ex ~ kappa mu A / L is of the order of the
+deviatoric stress, as in a nearly incompressible solid; J - 1 also has the
+quadratic part O(|grad u|^2), which adds lambda (A / L)^2 (length scale
+L / 2) to p_ex. This is the regime where a displacement discretisation locks
+as lambda / mu grows. psi = (psi_1, X psi_2, X psi_3) makes u_x = X (d_y psi_3
+- d_z psi_2) vanish on X = 0 (the sliding symmetry), and so does phi, even in
+X. Amplitude A, length scale L and kappa are runtime Constants
+(|u_ex| ~ A, |grad u_ex| ~ A / L). The exact solution enters the residual
+and the errors as this expression evaluated at the quadrature points (no
+interpolant).
 
 DEGREE 1: the P1 displacement forms only (the locking comparison).
 DEGREE 2: the P2 displacement forms and the P2-P1 mixed forms (coefficient w).
 Compiled as its own ffcx module per degree (mms_mixed_p<deg>).
 """
 from ufl import Coefficient as _Coefficient
+from ufl import Constant as _Constant
 from ufl import FiniteElement as _FiniteElement
 from ufl import Form as _Form
 from ufl import FunctionSpace as _FunctionSpace
@@ -49,15 +58,22 @@ from base_springs import c, c_fold_ratio, R_base  # noqa: F401
 QDEG_MMS = {1: 4, 2: 6}[DEGREE]
 QDEG_ERR = {1: 6, 2: 8}[DEGREE]
 
-# The vector potential [m^2] and the manufactured displacement [m].
-MMS_AMPLITUDE = 0.0003
-MMS_LENGTH = 0.08
-_A, _L = MMS_AMPLITUDE, MMS_LENGTH
+# The vector potential [m^2] and the manufactured displacement [m]: its
+# amplitude A [m] and length scale L [m] (the wavelength is 2 pi L) are
+# runtime Constants (verification/mms_mixed.hpp, IncompressibleMmsSetup).
+# The volumetric part kappa (mu / lambda) grad phi (phi even in X: u_x = 0
+# on X = 0) gives the pressure a part linear in A, p ~ kappa mu A / L
+# (kappa = 0: u_ex divergence-free).
+mms_amplitude = _Constant(domain)
+mms_length = _Constant(domain)
+mms_kappa = _Constant(domain)
+_A, _L = mms_amplitude, mms_length
 _x, _y, _z = _X[0], _X[1], _X[2]
 _psi = _as_vector([_A * _L * _sin(_y / _L) * _cos(_z / _L + 0.3),
                    _x * _A * _cos(_x / _L) * _sin(_z / _L),
                    _x * _A * _sin(_y / _L + 0.2) * _cos(_z / _L)])
-u_ex = _curl(_psi)
+_phi = _A * _L * _cos(_x / _L) * _sin(_y / _L + 0.4) * _cos(_z / _L + 0.2)
+u_ex = _curl(_psi) + mms_kappa * mu / lmbda * _grad(_phi)
 p_ex = lmbda * (_det(_I + _grad(u_ex)) - 1)
 
 
