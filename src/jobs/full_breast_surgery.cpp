@@ -41,7 +41,7 @@ RootMeshes mesh_on_root(const Config& c, MPI_Comm comm, FullBreastSurgeryResult&
   const HalfCapSpec geo = HalfCapSpec::from(c);
   RootMeshes m;
   m.neutral.order = m.kept.order = m.resected.order = geo.order;
-  double volumes[4] = {};
+  double volumes[5] = {};
   on_root(comm, [&]
   {
     const int symmetry = generated::tag("symmetry");
@@ -60,14 +60,16 @@ RootMeshes mesh_on_root(const Config& c, MPI_Comm comm, FullBreastSurgeryResult&
     m.resected = std::move(cut.resected);
     volumes[0] = cut.volume_solid, volumes[1] = cut.volume_kept, volumes[2] = cut.volume_resected;
     volumes[3] = r.skin_fit_rms;
+    volumes[4] = cut.face_a_on_mirror ? 1 : 0;
   });
   static_assert(std::is_trivially_copyable_v<scan::FullIncisionGeometry>);
   MPI_Bcast(&r.incision, sizeof(r.incision), MPI_BYTE, 0, comm);
-  MPI_Bcast(volumes, 4, MPI_DOUBLE, 0, comm);
+  MPI_Bcast(volumes, 5, MPI_DOUBLE, 0, comm);
   r.base.cap_volume = volumes[0];
   r.volume_kept_cad = volumes[1];
   r.volume_resected_cad = volumes[2];
   r.skin_fit_rms = volumes[3];
+  r.face_a_on_mirror = volumes[4] != 0;
   return m;
 }
 
@@ -167,6 +169,7 @@ nlohmann::json to_json(const FullBreastSurgeryResult& r)
   j["incision"]["D_mirror_m"] = g.D_mirror;
   j["incision"]["P1_mirror_normal"] = g.n1_mirror;
   j["skin_fit_rms_m"] = r.skin_fit_rms;
+  j["suture"]["face_a"] = r.face_a_on_mirror ? "P1' (x < 0)" : "P1 (x > 0)";
   j["solid_volume_m3"] = r.base.cap_volume;
   j["volume_remaining_cad_m3"] = r.volume_kept_cad;
   j["resected_volume_cad_m3"] = r.volume_resected_cad;

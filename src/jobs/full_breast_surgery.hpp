@@ -18,6 +18,7 @@ struct FullBreastSurgeryResult
   double skin_fit_rms = 0;          ///< RMS radial distance of the neutral skin nodes to the fit [m]
   double volume_kept_cad = 0, volume_resected_cad = 0; ///< [m^3]
   double gap_tissue = 0, gap_chest = 0;                 ///< final gaps of the two sutures [m]
+  bool face_a_on_mirror = false; ///< suture_a (sewn to its mirror image) is the keel face on P1' (x < 0)
 };
 
 /// True when geometry.mesh_file is set: surgery on the user's (full) breast

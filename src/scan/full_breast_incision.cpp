@@ -122,11 +122,25 @@ FullIncisionGeometry full_incision_geometry(const RadialSurface& skin, const Inc
 
 namespace
 {
+/// The total area of the faces `faces`.
+double area(const std::vector<int>& faces)
+{
+  double total = 0;
+  for (int f : faces)
+  {
+    double a;
+    gmsh::model::occ::getMass(2, f, a);
+    total += a;
+  }
+  return total;
+}
+
 /// Physical groups of the volumes `vols` (tag 1) and of their boundary faces:
-/// base (y = 0), suture_a (P1), suture_b (P1'), suture_bcd (P2), skin (the
+/// base (y = 0), the keel faces on P1 and P1' (the smaller one suture_a, the
+/// other suture_b; `mirror_is_a`: the one on P1'), suture_bcd (P2), skin (the
 /// rest). Returns the CAD volume; `cut_faces` counts the faces on P1, P1', P2.
 double tag_full_faces(const gmsh::vectorpair& vols, const FullIncisionGeometry& g, const FullIncisionTags& tags,
-                      std::array<int, 3>& cut_faces)
+                      std::array<int, 3>& cut_faces, bool& mirror_is_a)
 {
   namespace occ = gmsh::model::occ;
   std::vector<int> ids, base, skin, on_p1, on_p1m, on_p2;
@@ -162,9 +176,13 @@ double tag_full_faces(const gmsh::vectorpair& vols, const FullIncisionGeometry& 
       skin.push_back(t);
   }
   gmsh::model::addPhysicalGroup(3, ids, 1);
+  // Face A (whose nodes are sewn to their mirror images in face B) is the
+  // smaller keel face: on an asymmetric breast its mirror image then lies
+  // (nearly) inside the other.
+  mirror_is_a = area(on_p1m) < area(on_p1);
   const std::pair<const std::vector<int>*, int> groups[] = {
-      {&base, tags.base}, {&skin, tags.skin}, {&on_p1, tags.suture_a}, {&on_p1m, tags.suture_b},
-      {&on_p2, tags.suture_bcd}};
+      {&base, tags.base}, {&skin, tags.skin}, {&on_p1, mirror_is_a ? tags.suture_b : tags.suture_a},
+      {&on_p1m, mirror_is_a ? tags.suture_a : tags.suture_b}, {&on_p2, tags.suture_bcd}};
   for (const auto& [list, tag] : groups)
     if (!list->empty())
       gmsh::model::addPhysicalGroup(2, *list, tag);
@@ -213,7 +231,7 @@ FullIncisionMeshes mesh_full_incision(const RadialSurface& skin, const FullIncis
     if (kept.empty())
       throw InputError("the incision removes the whole breast: check incision.a_deg, incision.s, incision.h, "
                        "incision.d");
-    out.volume_kept = tag_full_faces(kept, g, tags, cut_faces);
+    out.volume_kept = tag_full_faces(kept, g, tags, cut_faces, out.face_a_on_mirror);
     if (cut_faces[0] == 0 || cut_faces[1] == 0 || cut_faces[2] == 0)
       throw InputError(fmt::format("the incision planes miss the breast (cut faces on P1, P1', P2: {}, {}, {}): "
                                    "check incision.a_deg, incision.h, incision.d",
@@ -230,7 +248,8 @@ FullIncisionMeshes mesh_full_incision(const RadialSurface& skin, const FullIncis
   occ::synchronize();
   if (resected.empty())
     throw InputError("the incision removes nothing: check incision.a_deg, incision.s, incision.h, incision.d");
-  out.volume_resected = tag_full_faces(resected, g, tags, cut_faces);
+  bool resected_mirror_is_a = false;
+  out.volume_resected = tag_full_faces(resected, g, tags, cut_faces, resected_mirror_is_a);
   meshes::set_incision_mesh_options(mesh_size);
   out.resected = meshes::extract_tagged_mesh(order, refinements);
   return out;

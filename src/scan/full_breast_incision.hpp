@@ -9,8 +9,10 @@
 //   breast: P2 meets the skin at y = h exactly only on a symmetric one);
 //   B, B' = P1, P1' with P2 in y = 0.
 // Resected: the keel {|x| < (s - z) tan a} and the lower pole beyond P2.
-// The remaining body's cut faces: suture_a on P1 (x > 0), suture_b on P1'
-// (x < 0), suture_bcd on P2.
+// The remaining body's cut faces: the keel faces on P1 (x > 0) and P1'
+// (x < 0), the smaller of the two tagged suture_a (its nodes are sewn to
+// their mirror images, which then lie, up to the skin's asymmetry, inside
+// the other face, suture_b), and suture_bcd on P2.
 #include "geometry_options.hpp"
 #include "radial_fit.hpp"
 #include "tagged_mesh.hpp"
@@ -47,6 +49,7 @@ struct FullIncisionMeshes
 {
   meshes::TaggedMesh kept, resected;
   double volume_solid = 0, volume_kept = 0, volume_resected = 0; ///< CAD [m^3]
+  bool face_a_on_mirror = false; ///< suture_a is the keel face on P1' (x < 0), else on P1
 };
 
 /// Mesh both bodies at `mesh_size`, element `order`, `refinements`.
