@@ -1,5 +1,5 @@
 // The planning app's pieces that need no server: job ids, the case from
-// JSON overrides, progress from a job's log, the lower-pole volumes of a
+// JSON overrides, a calibration's progress, the lower-pole volumes of a
 // skin surface, the serve options and the data folder rules.
 #include "case_request.hpp"
 #include "data_folder.hpp"
@@ -81,26 +81,8 @@ TEST(AppCaseRequest, JsonValuesGoThroughTheCliParseAndMessages)
             std::string::npos);
 }
 
-TEST(AppProgress, SurgeryStagesFromTheLog)
+TEST(AppProgress, CalibrationCountsItsEvaluations)
 {
-  // 2 postures: meshing, 2 pre, sutures, 2 post, pictures = 7 stages
-  std::string log;
-  std::vector<double> seen;
-  for (const char* line : {"[10:00:00] surgery: pre-operative postures",
-                           "[10:00:01] solving posture 'standing' (theta = 0 deg)",
-                           "[10:00:02] solving posture 'supine' (theta = 90 deg)",
-                           "[10:00:03] surgery: resected volume 169.6 cm^3 (full breast); closing the sutures",
-                           "[10:00:04] surgery: post-operative postures",
-                           "[10:00:05] solving posture 'standing' (theta = 0 deg)",
-                           "[10:00:06] solving posture 'supine' (theta = 90 deg)"})
-  {
-    log += std::string(line) + "\n";
-    seen.push_back(app::progress_from_log("surgery", 2, log).fraction);
-  }
-  const std::vector<double> expected = {1. / 7, 1. / 7, 2. / 7, 3. / 7, 4. / 7, 4. / 7, 5. / 7};
-  for (std::size_t i = 0; i < expected.size(); ++i)
-    EXPECT_NEAR(seen[i], expected[i], 1e-12) << i;
-  EXPECT_EQ(app::progress_from_log("surgery", 2, log).stage, "solving posture 'supine' (theta = 90 deg)");
   // A calibration: its evaluations (the structured channel) over max_evals, at most 0.95.
   const auto cal = app::calibration_progress(10, 2, "[1] calibrating [mu,c]\n[2] eval    2  chi2 = 2\n");
   EXPECT_NEAR(cal.fraction, 0.2, 1e-12);
