@@ -13,6 +13,7 @@
 #include "option_checks.hpp"
 #include "overrides.hpp"
 #include "scan_calibration.hpp"
+#include "scan_model_job.hpp"
 #include "scan_readers.hpp"
 #include "scan_series.hpp"
 #include <cmath>
@@ -67,6 +68,7 @@ void check_options(ScanCalibrateOptions& o, const Config& start, std::vector<cal
     check_range(o.model.mesh.mesh_size, 0.001, 0.02, "--mesh-size", "m (or 0: by the volume)");
   check_range(o.model.mesh.order, 1, 2, "--order", "");
   check_range(o.chest_margin, 0, 0.05, "--chest-margin", "m");
+  check_range(o.model.limits.max_chest_rms, 1e-4, 0.05, "--max-chest-rms", "m");
   check_range(o.min_sigma, 1e-5, 0.01, "--min-sigma", "m");
   check_range(o.max_iterations, 1, 50, "--max-iterations", "");
   if (o.mesh_ratio != 0)
@@ -138,6 +140,7 @@ std::vector<double> read_scans_on_root(const ScanCalibrateOptions& o, calibratio
     scans_json = {{"scans", list}, {"chest", o.chest},
                   {"frame", {{"origin_m", f.origin}, {"e_x", f.ex}, {"e_y", f.ey}, {"e_z", f.ez},
                              {"mirrored", f.mirrored()}}},
+                  {"chest_wall", chest_json(s.first.chest)},
                   {"tetrahedra", r.mesh.num_cells()}, {"mesh_size_m", s.first.mesh_size},
                   {"chest_margin_m", o.chest_margin}};
     numbers = {s.first.mesh_size, double(r.mesh.order), f.footprint_radius, s.first.mesh.nipple[1],
@@ -241,6 +244,8 @@ Command add_scan_calibrate_command(CLI::App& root)
   app->add_option("--order", o->model.mesh.order, "element order 1 or 2")->capture_default_str();
   app->add_option("--chest-margin", o->chest_margin, "scan points nearer the chest plane are not fitted [m], in "
                                                      "[0, 0.05]")->capture_default_str();
+  app->add_option("--max-chest-rms", o->model.limits.max_chest_rms, "largest RMS distance of the chest wall "
+                  "under the breast from the chest plane [m], in [1e-4, 0.05]")->capture_default_str();
   app->add_option("--min-sigma", o->min_sigma, "smallest noise sigma weighting a scan's points [m], in [1e-5, "
                                                "0.01] (each scan's own robust noise RMS above it)")
       ->capture_default_str();

@@ -19,8 +19,18 @@ nlohmann::json frame_json(const scan::BreastFrame& f, scan::Units units)
           {"mirrored", f.mirrored()}, {"unit_to_m", units == scan::Units::mm ? 1e-3 : 1.0}};
 }
 
-/// The chest wall against the chest plane (the mesh's base); radii of a flat
-/// direction are null.
+nlohmann::json summary_json(const scan::ScanModel& m, std::size_t cells, const Posture& p)
+{
+  return {{"posture", p.name}, {"theta_deg", p.theta_deg}, {"scan_points", m.points},
+          {"scan_triangles", m.triangles}, {"points_fitted", m.points_used},
+          {"fit_degree", m.fit.degree}, {"fit_rms_m", m.fit_rms}, {"noise_rms_m", m.noise_rms},
+          {"nipple_m", m.mesh.nipple}, {"footprint_radius_m", m.frame.footprint_radius},
+          {"footprint_off_plane_m", m.frame.footprint_off_plane}, {"chest", chest_json(m.chest)},
+          {"tetrahedra", cells}, {"nodes", m.mesh.mesh.num_nodes()},
+          {"volume_m3", m.half ? 2 * m.mesh.volume : m.mesh.volume}};
+}
+} // namespace
+
 nlohmann::json chest_json(const scan::ChestCurvature& c)
 {
   nlohmann::json j = {{"source", c.source}, {"samples", c.samples}, {"plane_rms_m", c.plane_rms},
@@ -34,18 +44,6 @@ nlohmann::json chest_json(const scan::ChestCurvature& c)
   }
   return j;
 }
-
-nlohmann::json summary_json(const scan::ScanModel& m, std::size_t cells, const Posture& p)
-{
-  return {{"posture", p.name}, {"theta_deg", p.theta_deg}, {"scan_points", m.points},
-          {"scan_triangles", m.triangles}, {"points_fitted", m.points_used},
-          {"fit_degree", m.fit.degree}, {"fit_rms_m", m.fit_rms}, {"noise_rms_m", m.noise_rms},
-          {"nipple_m", m.mesh.nipple}, {"footprint_radius_m", m.frame.footprint_radius},
-          {"footprint_off_plane_m", m.frame.footprint_off_plane}, {"chest", chest_json(m.chest)},
-          {"tetrahedra", cells}, {"nodes", m.mesh.mesh.num_nodes()},
-          {"volume_m3", m.half ? 2 * m.mesh.volume : m.mesh.volume}};
-}
-} // namespace
 
 Config scan_case(const scan::ScanModel& m, const std::string& mesh_file, const Posture& posture,
                  const std::string& name)

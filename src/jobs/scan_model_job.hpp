@@ -10,7 +10,8 @@
 //                 `neutral-state` read it;
 //   frame.json    the map between the scanner frame and the breast frame
 //                 (x_scanner = origin + X e_x + Y e_y + Z e_z, metres);
-//   summary.json  counts, fit RMS and noise, nipple, footprint, volume.
+//   summary.json  counts, fit RMS and noise, nipple, footprint, the chest
+//                 wall against the chest plane, volume.
 // Nothing is written when the scan is refused (InputError, exit code 2).
 #include "config.hpp"
 #include "output_target.hpp"
@@ -18,6 +19,7 @@
 #include "scan_model.hpp"
 #include <filesystem>
 #include <mpi.h>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 namespace breastsim
@@ -39,6 +41,10 @@ struct ScanModelResult
 
 ScanModelResult scan_model(const ScanModelRequest& r, const OutputTarget& out, MPI_Comm comm);
 std::string scan_model_table(const ScanModelResult& r);
+
+/// The chest wall against the chest plane (summary.json "chest"; radii of
+/// a flat direction are null).
+nlohmann::json chest_json(const scan::ChestCurvature& c);
 
 /// The case of a scan's mesh (geometry.mesh_file = `mesh_file`) in `posture`.
 Config scan_case(const scan::ScanModel& m, const std::string& mesh_file, const Posture& posture,

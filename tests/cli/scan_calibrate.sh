@@ -40,6 +40,7 @@ refuse fit_shape "--fit = R" "${good[@]}" --fit R
 refuse fit_unknown "--fit" "${good[@]}" --fit nonsense
 refuse fit_c_fixed "base.fixed = true" "${good[@]}" --fit mu,c --set base.fixed=true
 refuse margin "--chest-margin = 0.5 is out of range" "${good[@]}" --chest-margin 0.5
+refuse chest_rms "--max-chest-rms = 0.5 is out of range" "${good[@]}" --max-chest-rms 0.5
 refuse predict_posture "one per held-out scan" "${good[@]}" --predict all_fours/scan.stl
 refuse predict_fitted "a fitted scan is in this posture" "${good[@]}" --predict all_fours/scan.stl \
   --predict-posture supine
@@ -65,6 +66,8 @@ assert mu["interval95"][0] < mu["value"] < mu["interval95"][1]
 assert held["posture"] == "all_fours" and held["rms_mm"] < 2.0, "held-out posture not within 2 mm RMS"
 for s in r["scans_fitted"]:
     assert s["rms_mm"] < 1.0, s
+chest = r["inputs"]["chest_wall"]  # the true chest is the plane y = 0
+assert chest["source"] == "chest surface" and chest["plane_rms_m"] < 1e-6, chest
 PY
 "$BIN" -q simulate cal/case.toml --set output.xdmf=false --out sim >/dev/null \
   || { echo "FAIL: simulate of the calibrated case"; exit 1; }
