@@ -5,8 +5,9 @@
 # resected volume to 1e-9 relative, post-operative nipple (every posture,
 # every coordinate) to 1e-9 m, largest suture gap to 1e-9 m. Measured on
 # 2026-12-03 (loaded machine): gap 0.0188 mm, the two runs agree to 4e-14
-# relative in volume and 3e-17 m in the nipple (20 s serial, 55 s on 2
-# ranks; at the default 8 mm: 26 s and 45 s, the same agreement).
+# relative in volume and 4e-17 m in the nipple (20 s serial, 55 s on 2
+# ranks; at the default 8 mm: 26 s and 45 s, the same agreement). As a
+# ctest: 56 s CPU, 94-120 s wall at load average 5-8 on the 2 cores.
 # Usage: mpi_p2_surgery.sh BREASTSIM CASES_DIR
 set -eu
 BIN="$1"; CASES="$2"
