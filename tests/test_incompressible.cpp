@@ -6,7 +6,7 @@
 //
 // MMS, nested red-refined 16 mm cap (566, 4528, 36224 cells), lambda/mu = 1e3,
 // default u_ex (A = 6e-5 m, L = 0.16 m, kappa = 1), measured
-// (IncompressibleMms.LongMixedOrdersAtLambdaOverMu1e3, ~3 min):
+// (IncompressibleMms.LongMixedOrdersAtLambdaOverMu1e3, 3.7-5 min):
 //   mixed P2-P1: u L2 3.019, 3.037; u H1 1.993, 2.009; p L2 1.998, 2.057;
 //   least-squares slopes 3.028, 2.001, 2.027.
 // The divergence-free u_ex with a large quadratic pressure (kappa = 0, A =
@@ -80,7 +80,7 @@ TEST(IncompressibleMms, MixedOrdersAtLambdaOverMu1e3)
   expect_mixed_orders(s);
 }
 
-// Three levels (~3 min; the finest has 168k unknowns, LU, 4.1 GB).
+// Three levels (3.7-5 min; the finest has 168k unknowns, LU, 4.1 GB).
 TEST(IncompressibleMms, LongMixedOrdersAtLambdaOverMu1e3)
 {
   const auto s = run(tissue_at(1e3), true, 2, 3);
