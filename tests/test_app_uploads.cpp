@@ -2,6 +2,7 @@
 // (scan_upload.cpp) with the CLI's messages, the stored file's check naming
 // "the uploaded scan" (never the server's path), and the recording check
 // (recording_api.cpp) with its bound on the points.
+#include "case_request.hpp"
 #include "errors.hpp"
 #include "input_error_message.hpp"
 #include "recording_api.hpp"
@@ -92,4 +93,15 @@ TEST(AppUploads, RecordingCheckedAsCalibrateReadsIt)
   EXPECT_NE(app::recording_check_answer({{"format", "other"}})["error"].get<std::string>().find("format"),
             std::string::npos);
   EXPECT_EQ(app::recording_check_answer(recording(12))["ok"], true);
+}
+
+TEST(AppUploads, NoFilePathFromARequest)
+{
+  for (const char* path : {"/etc/passwd", "../../jobs/x/scan.msh", "reference.msh"})
+    EXPECT_NE(message_of([&] { app::case_from_overrides({{"geometry.mesh_file", path}}); })
+                  .find("key 'geometry.mesh_file' = \"" + std::string(path) +
+                        "\" is not accepted by breastsim serve (no file path from a request"),
+              std::string::npos)
+        << path;
+  EXPECT_EQ(message_of([] { app::case_from_overrides({{"geometry.mesh_file", ""}}); }), "");
 }

@@ -1,6 +1,7 @@
 #include "case_request.hpp"
 #include "errors.hpp"
 #include "posture.hpp"
+#include "schema.hpp"
 #include <fmt/format.h>
 
 namespace breastsim::app
@@ -44,6 +45,10 @@ Config case_from_overrides(const nlohmann::json& overrides)
   for (const auto& [key, v] : overrides.items())
   {
     c.set_text(key, value_text(key, v));
+    if (key_info(key).path && !c.text(key).empty())
+      throw InputError(fmt::format("key '{}' = \"{}\" is not accepted by breastsim serve (no file path "
+                                   "from a request: a scan is uploaded as a file): allowed \"\"",
+                                   key, c.text(key).substr(0, 80)));
     if (key == "solver.petsc_options" && !c.text(key).empty())
       throw InputError(fmt::format("key 'solver.petsc_options' = \"{}\" is not accepted by breastsim "
                                    "serve (PETSc options can name files): allowed \"\"",

@@ -2,7 +2,8 @@
 // A case from a request: JSON {key: value} overrides on the defaults, each
 // value set through Config::set_text (the same parse and messages as
 // `--set key=value`), then Config::validate. Keys that would let a request
-// name files are refused (solver.petsc_options).
+// name files are refused (solver.petsc_options, and every path key such as
+// geometry.mesh_file: checked before anything looks at the file system).
 #include "config.hpp"
 #include <nlohmann/json.hpp>
 

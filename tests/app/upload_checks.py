@@ -124,6 +124,10 @@ def scan_refusals(api, stl, data):
     for path in ["/api/scans/../jobs", "/api/scans/..%2f..%2fetc%2fpasswd", "/api/%2e%2e/scans"]:
         s, _, _ = api.raw("POST", path + q, stl, {"Content-Type": "application/octet-stream"})
         check(s in (404, 415), f"POST {path} with a scan's bytes is refused ({s}: not a route, or not JSON)")
+    for path in ("/etc/passwd", os.path.join(data, "jobs")):
+        s, r = api.json("POST", "/api/validate", {"geometry.mesh_file": path})
+        check(s == 400 and "no file path from a request" in r["error"],
+              f"a mesh file named by a request is refused before any file is looked at: {r['error'][:80]}")
     s = declared_length(api.port, "/api/scans" + q, 1 << 30, "application/octet-stream")
     s2 = declared_length(api.port, "/api/jobs", 2 << 20, "application/json")
     check(s == 413 and s2 == 413, "a scan above --max-upload and a JSON body above --max-body are refused "
