@@ -108,6 +108,7 @@ void suture_full_breast(Model& post, const Config& c, const std::filesystem::pat
   r.base.suture = sutures.suture;
   r.gap_tissue = sutures.gap_tissue;
   r.gap_chest = sutures.gap_chest;
+  r.keel_images = sutures.images;
   write_fields(post, dir / "sutured", output.xdmf, output.vtk);
   r.base.new_nipple_neutral = ObservableProbe(post, r.incision.A).measure(post).nipple;
   reset_reference(post);
@@ -175,6 +176,8 @@ nlohmann::json to_json(const FullBreastSurgeryResult& r)
   j["resected_volume_cad_m3"] = r.volume_resected_cad;
   j["suture"]["max_gap_keel_m"] = r.gap_tissue;
   j["suture"]["max_gap_chest_m"] = r.gap_chest;
+  j["suture"]["keel_nodes_extended"] = r.keel_images.extended;
+  j["suture"]["keel_max_extension"] = r.keel_images.max_outside;
   return j;
 }
 } // namespace breastsim

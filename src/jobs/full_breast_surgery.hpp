@@ -7,6 +7,7 @@
 // (full_breast_sutures.hpp), the final neutral state, the post-operative
 // postures. Volumes are the full breast's (no mirror factor).
 #include "full_breast_incision.hpp"
+#include "partner_field.hpp"
 #include "surgery.hpp"
 
 namespace breastsim
@@ -18,6 +19,7 @@ struct FullBreastSurgeryResult
   double skin_fit_rms = 0;          ///< RMS radial distance of the neutral skin nodes to the fit [m]
   double volume_kept_cad = 0, volume_resected_cad = 0; ///< [m^3]
   double gap_tissue = 0, gap_chest = 0;                 ///< final gaps of the two sutures [m]
+  PartnerImageStats keel_images; ///< face A's nodes whose mirror images lie beyond face B's cells
   bool face_a_on_mirror = false; ///< suture_a (sewn to its mirror image) is the keel face on P1' (x < 0)
 };
 

@@ -116,6 +116,7 @@ FullSutureReport close_full_breast_sutures(Model& model, const Config& c,
     throw SolveError(e.what() + describe_fold(model, points));
   }
   model.set_term("gravity", gravity_on);
+  rep.images = model.partner("tissue_suture").image_stats();
   rep.suture.seconds = clock.seconds();
   return rep;
 }

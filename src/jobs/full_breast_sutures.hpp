@@ -6,6 +6,7 @@
 // (forms/sutures.py, suture_bcd -> y = 0). Both closures are driven together
 // without gravity, then both penalties are raised x10 until the largest gap
 // is at most surgery.max_gap.
+#include "partner_field.hpp"
 #include "surgery.hpp"
 
 namespace breastsim
@@ -22,6 +23,7 @@ struct FullSutureReport
   SutureReport suture;   ///< max_gap: the larger of the two below
   double gap_tissue = 0; ///< keel faces, |f(X) - f(g(X))| [m]
   double gap_chest = 0;  ///< P2 face to the chest plane [m]
+  PartnerImageStats images; ///< face A's nodes whose mirror images lie beyond face B's cells
 };
 
 /// Close both sutures (tissue_suture and sutures switched on, gravity off

@@ -266,7 +266,8 @@ void throw_first_error(const std::string& error, MPI_Comm comm)
 
 Mat build_partner_interpolation(const fem::FunctionSpace& V,
                                 const mesh::MeshTags<std::int32_t>& facets,
-                                const generated::PartnerInfo& info, const AffineMap& g)
+                                const generated::PartnerInfo& info, const AffineMap& g,
+                                PartnerImageStats* stats)
 {
   auto mesh = V.mesh();
   const auto faces = partner_faces(facets, info, mesh->comm());
@@ -286,6 +287,7 @@ Mat build_partner_interpolation(const fem::FunctionSpace& V,
   PetscMat P = create_interpolation_matrix(mesh->comm(), owned * 3, cells.nodes_per_cell);
   std::vector<double> basis(cmap.tabulate_shape(0, 1)[2]);
   std::string error; // the first node whose image is too far from face B
+  PartnerImageStats local;
   for (auto i : nodes_a)
   {
     if (i >= owned)
@@ -293,7 +295,11 @@ Mat build_partner_interpolation(const fem::FunctionSpace& V,
     const std::array<double, 3> y = apply_map(g, &X[3 * i]);
     ImagePoint image = locate_image(cmap, cells, y, false);
     if (image.outside > 1e-3) // beyond face B's cells: the nearest cell's polynomial, extended
+    {
       image = locate_image(cmap, cells, y, true);
+      ++local.extended;
+      local.max_outside = std::max(local.max_outside, image.outside);
+    }
     if (image.outside > max_extension)
     {
       if (error.empty())
@@ -306,6 +312,11 @@ Mat build_partner_interpolation(const fem::FunctionSpace& V,
                            std::span<const std::int64_t>(cells.dofs.data() + image.cell * nn, nn), basis);
   }
   throw_first_error(error, mesh->comm());
+  if (stats)
+  {
+    MPI_Allreduce(&local.extended, &stats->extended, 1, MPI_INT64_T, MPI_SUM, mesh->comm());
+    MPI_Allreduce(&local.max_outside, &stats->max_outside, 1, MPI_DOUBLE, MPI_MAX, mesh->comm());
+  }
   PETSC_CHECK(MatAssemblyBegin(P.get(), MAT_FINAL_ASSEMBLY));
   PETSC_CHECK(MatAssemblyEnd(P.get(), MAT_FINAL_ASSEMBLY));
   return P.release();
@@ -331,7 +342,7 @@ void PartnerField::update(const fem::Function<T>& u, const mesh::MeshTags<std::i
   if (!_P || g != _map)
   {
     _P.reset();
-    _P = PetscMat(build_partner_interpolation(*_V, facets, _info, g));
+    _P = PetscMat(build_partner_interpolation(*_V, facets, _info, g, &_stats));
     _map = g;
   }
   // w = P u

@@ -39,9 +39,19 @@ using AffineMap = std::array<double, 12>;
 /// than 1e-3 outside in reference coordinates; then the nearest cell's
 /// polynomial is extended up to 0.5 outside it, beyond that an InputError).
 /// Collective.
+/// How many images g(X_i) lay outside every cell touching face B (taken
+/// from the nearest cell's extended polynomial) and how far at most
+/// (outside() in that cell's reference coordinates; 0: none), over all ranks.
+struct PartnerImageStats
+{
+  std::int64_t extended = 0;
+  double max_outside = 0;
+};
+
 Mat build_partner_interpolation(const dolfinx::fem::FunctionSpace& V,
                                 const dolfinx::mesh::MeshTags<std::int32_t>& facets,
-                                const generated::PartnerInfo& info, const AffineMap& g);
+                                const generated::PartnerInfo& info, const AffineMap& g,
+                                PartnerImageStats* stats = nullptr);
 
 class PartnerField
 {
@@ -66,6 +76,8 @@ public:
   Mat hessian_coupling(std::span<const std::int8_t> constrained);
   /// P (nullptr before the first update). Owned by this object.
   Mat interpolation() const { return _P.get(); }
+  /// The images of face A's nodes beyond face B's cells, as P was built.
+  const PartnerImageStats& image_stats() const { return _stats; }
 
 private:
   generated::PartnerInfo _info;
@@ -75,5 +87,6 @@ private:
   PetscMat _P, _Auw, _Aww; ///< P, E_uw, E_ww
   PetscVec _bw;            ///< E_w
   AffineMap _map{};
+  PartnerImageStats _stats;
 };
 } // namespace breastsim
