@@ -10,9 +10,10 @@ export const RECORDING_FORMAT = "breastsim-recording/1";
 
 // What the page says the scanned breast cannot do yet, and why.
 export const SCAN_LIMITS =
-  "The scanned breast is a full breast on its own mesh: the incision (planes P1, P2) cuts the parametric cap " +
-  "(geometry.R, H), and the library's surgery and sweep refuse a mesh file, so surgery on the scanned breast " +
-  "is not supported yet. The plan, the surgery and the sweep below use the cap model (R, H) of the breast model.";
+  "Not yet with the scanned breast in this app: the plan draws the incision on the parametric cap " +
+  "(geometry.R, H) only, and the library's full-breast surgery (breastsim surgery on the scan's neutral case) " +
+  "is not yet run by the app, nor is a sweep on it. The plan, the surgery and the sweep below use the cap " +
+  "model (R, H) of the breast model; so does the calibration.";
 
 // The recording's check (POST /api/recording/check) in words.
 export function recordingText(name, info) {
