@@ -26,6 +26,26 @@ int half_space_box(const Point& n, double c, double L)
   return box;
 }
 
+double add_volume_group(const std::vector<std::pair<int, int>>& vols, std::vector<int>& faces)
+{
+  std::vector<int> ids;
+  double volume = 0;
+  for (auto [d, t] : vols)
+  {
+    ids.push_back(t);
+    double m;
+    gmsh::model::occ::getMass(d, t, m);
+    volume += m;
+  }
+  gmsh::model::addPhysicalGroup(3, ids, 1);
+  gmsh::vectorpair boundary;
+  gmsh::model::getBoundary(vols, boundary, false, false, false);
+  faces.clear();
+  for (auto [d, t] : boundary)
+    faces.push_back(std::abs(t));
+  return volume;
+}
+
 bool IncisionGeometry::resected(const Point& p) const
 {
   return dot(n1, p) < c1 || dot(n2, p) < c2;
@@ -118,21 +138,12 @@ double tag_faces(const gmsh::vectorpair& vols, const IncisionGeometry& g, double
                  const std::array<int, 5>& tags, bool& on_p1, bool& on_p2)
 {
   namespace occ = gmsh::model::occ;
-  std::vector<int> ids, base, skin, sym, abd, bcd;
-  double volume = 0;
-  for (auto [d, t] : vols)
-  {
-    ids.push_back(t);
-    double m;
-    occ::getMass(d, t, m);
-    volume += m;
-  }
-  gmsh::vectorpair faces;
-  gmsh::model::getBoundary(vols, faces, false, false, false);
+  std::vector<int> base, skin, sym, abd, bcd;
+  std::vector<int> faces;
+  const double volume = add_volume_group(vols, faces);
   const double tol = 1e-6 * Rs;
-  for (auto [d, t] : faces)
+  for (int t : faces)
   {
-    t = std::abs(t);
     double x, y, z;
     occ::getCenterOfMass(2, t, x, y, z);
     const Point p = {x, y, z};
@@ -151,7 +162,6 @@ double tag_faces(const gmsh::vectorpair& vols, const IncisionGeometry& g, double
     else
       throw std::runtime_error("incision: unclassified planar face");
   }
-  gmsh::model::addPhysicalGroup(3, ids, 1);
   const std::vector<int>* groups[5] = {&base, &skin, &sym, &abd, &bcd};
   for (int i = 0; i < 5; ++i)
     if (!groups[i]->empty())

@@ -5,6 +5,8 @@
 // body with its two cut faces tagged.
 #include "half_cap.hpp"
 #include <array>
+#include <utility>
+#include <vector>
 
 namespace breastsim::meshes
 {
@@ -31,6 +33,10 @@ IncisionGeometry incision_geometry(const HalfCapSpec& cap, const IncisionSpec& i
 
 /// The half-space {n . p < c} (n unit) as an OCC box of size L (current gmsh model).
 int half_space_box(const Point& n, double c, double L);
+
+/// Physical group 1 of the OCC volumes `vols`; returns their CAD volume and
+/// (in `faces`) the tags of their boundary faces (current gmsh model, synchronized).
+double add_volume_group(const std::vector<std::pair<int, int>>& vols, std::vector<int>& faces);
 
 /// gmsh's mesh options of the incised bodies: sizes in [mesh_size / 2, mesh_size], Delaunay, one thread.
 void set_incision_mesh_options(double mesh_size);

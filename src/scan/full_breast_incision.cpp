@@ -143,21 +143,12 @@ double tag_full_faces(const gmsh::vectorpair& vols, const FullIncisionGeometry& 
                       std::array<int, 3>& cut_faces, bool& mirror_is_a)
 {
   namespace occ = gmsh::model::occ;
-  std::vector<int> ids, base, skin, on_p1, on_p1m, on_p2;
-  double volume = 0;
-  for (auto [d, t] : vols)
-  {
-    ids.push_back(t);
-    double m;
-    occ::getMass(d, t, m);
-    volume += m;
-  }
-  gmsh::vectorpair faces;
-  gmsh::model::getBoundary(vols, faces, false, false, false);
+  std::vector<int> base, skin, on_p1, on_p1m, on_p2;
+  std::vector<int> faces;
+  const double volume = meshes::add_volume_group(vols, faces);
   const double tol = 1e-6 * norm(g.A);
-  for (auto [d, t] : faces)
+  for (int t : faces)
   {
-    t = std::abs(t);
     Vec3 p;
     occ::getCenterOfMass(2, t, p[0], p[1], p[2]);
     std::string type;
@@ -175,7 +166,6 @@ double tag_full_faces(const gmsh::vectorpair& vols, const FullIncisionGeometry& 
     else
       skin.push_back(t);
   }
-  gmsh::model::addPhysicalGroup(3, ids, 1);
   // Face A (whose nodes are sewn to their mirror images in face B) is the
   // smaller keel face: on an asymmetric breast its mirror image then lies
   // (nearly) inside the other.
