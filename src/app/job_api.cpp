@@ -50,16 +50,8 @@ void post_job(const httplib::Request& req, httplib::Response& res, JobStore& sto
   with_json_body(req, res, [&](const nlohmann::json& body) {
     const auto r = store.create(checked_job_request(body));
     id = r.id;
-    if (!queue.submit(r.id))
-    {
-      store.update(r.id, [](JobRecord& rec) {
-        rec.state = JobState::failed;
-        rec.error_kind = "error";
-        rec.error = "the job queue is full";
-        rec.finished = utc_now();
-      });
+    if (!submit_or_fail(store, queue, r.id))
       id.clear();
-    }
     return nlohmann::json{{"id", r.id}};
   });
   if (res.status == 200 && id.empty())

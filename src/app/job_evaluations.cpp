@@ -28,7 +28,7 @@ nlohmann::json evaluations_from_history(const nlohmann::json& history)
   return out;
 }
 
-nlohmann::json evaluations_after(const std::string& jsonl, long since)
+nlohmann::json complete_json_lines(const std::string& jsonl)
 {
   auto out = nlohmann::json::array();
   std::istringstream in(jsonl);
@@ -37,12 +37,19 @@ nlohmann::json evaluations_after(const std::string& jsonl, long since)
   {
     if (in.eof() && !jsonl.empty() && jsonl.back() != '\n')
       break; // the last line is still being written
-    const auto j = nlohmann::json::parse(line, nullptr, false);
-    if (!j.is_object() || !j.contains("n") || !j["n"].is_number_integer() || !j.contains("chi2"))
-      continue;
-    if (j["n"].get<long>() > since)
-      out.push_back(j);
+    auto j = nlohmann::json::parse(line, nullptr, false);
+    if (j.is_object())
+      out.push_back(std::move(j));
   }
+  return out;
+}
+
+nlohmann::json evaluations_after(const std::string& jsonl, long since)
+{
+  auto out = nlohmann::json::array();
+  for (auto& j : complete_json_lines(jsonl))
+    if (j.contains("n") && j["n"].is_number_integer() && j.contains("chi2") && j["n"].get<long>() > since)
+      out.push_back(std::move(j));
   return out;
 }
 

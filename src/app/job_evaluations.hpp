@@ -20,6 +20,11 @@ inline const char* evaluations_file = "evaluations.jsonl";
 /// a chi2 that is not finite becomes null.
 nlohmann::json evaluations_from_history(const nlohmann::json& history);
 
+/// The JSON objects of the complete lines of a JSON-lines text, in order: a
+/// last line without its newline (still being written) and lines that are
+/// not JSON objects are skipped.
+nlohmann::json complete_json_lines(const std::string& jsonl);
+
 /// The entries of an evaluations.jsonl text whose n exceeds `since`, in
 /// order; lines that are not a complete entry (a line being written) are
 /// skipped.

@@ -249,4 +249,17 @@ void JobQueue::finish(const std::string& id, int exit_code, bool cancelled)
   log::info("serve: job {} ({}) {}{}", id, result.kind, state_name(result.state),
             result.error.empty() ? "" : ": " + result.error);
 }
+
+bool submit_or_fail(JobStore& store, JobQueue& queue, const std::string& id)
+{
+  if (queue.submit(id))
+    return true;
+  store.update(id, [](JobRecord& rec) {
+    rec.state = JobState::failed;
+    rec.error_kind = "error";
+    rec.error = "the job queue is full";
+    rec.finished = utc_now();
+  });
+  return false;
+}
 } // namespace breastsim::app

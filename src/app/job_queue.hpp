@@ -47,4 +47,7 @@ private:
   bool _stop = false;
   std::vector<std::thread> _workers;
 };
+/// Queue job `id`; when the queue is full its record is marked failed
+/// ("the job queue is full") and false is returned (the API answers 429).
+bool submit_or_fail(JobStore& store, JobQueue& queue, const std::string& id);
 } // namespace breastsim::app

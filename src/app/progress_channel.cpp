@@ -1,9 +1,9 @@
 #include "progress_channel.hpp"
+#include "job_evaluations.hpp"
 #include <algorithm>
 #include <fstream>
 #include <memory>
 #include <mpi.h>
-#include <sstream>
 
 namespace breastsim::app
 {
@@ -27,17 +27,10 @@ Progress progress_into(const fs::path& folder)
 nlohmann::json progress_entries(const std::string& jsonl)
 {
   auto out = nlohmann::json::array();
-  std::istringstream in(jsonl);
-  std::string line;
-  while (std::getline(in, line))
-  {
-    if (in.eof() && !jsonl.empty() && jsonl.back() != '\n')
-      break; // the last line is still being written
-    const auto j = nlohmann::json::parse(line, nullptr, false);
-    if (j.is_object() && j.contains("n") && j.contains("stage") && j["stage"].is_string() &&
-        j.contains("fraction") && j["fraction"].is_number())
-      out.push_back(j);
-  }
+  for (auto& j : complete_json_lines(jsonl))
+    if (j.contains("n") && j.contains("stage") && j["stage"].is_string() && j.contains("fraction") &&
+        j["fraction"].is_number())
+      out.push_back(std::move(j));
   return out;
 }
 

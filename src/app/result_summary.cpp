@@ -10,11 +10,7 @@ namespace breastsim::app
 namespace fs = std::filesystem;
 namespace
 {
-nlohmann::json read_json(const fs::path& file)
-{
-  std::ifstream f(file);
-  return nlohmann::json::parse(f);
-}
+nlohmann::json read_json(const fs::path& file) { return read_result_json(file); }
 
 /// One posture's observables in mm, with the nipple's distance to the base.
 nlohmann::json posture_view(const nlohmann::json& p, const fs::path& surface)
@@ -67,16 +63,10 @@ nlohmann::json summarize_surgery(const Config& c, const fs::path& dir, const nlo
   return j;
 }
 
-/// The identifiability of a fitted parameter in words.
+/// The identifiability of a fitted parameter of report.json in words.
 std::string identifiability(const nlohmann::json& p)
 {
-  const std::string flag = p.value("flag", "");
-  if (!flag.empty())
-    return flag;
-  const auto se = p.value("relative_standard_error", nlohmann::json());
-  return se.is_number() ? "identifiable: relative standard error " +
-                              std::to_string(static_cast<int>(std::lround(100 * se.get<double>()))) + " %"
-                        : "identifiable";
+  return identifiability_in_words(p.value("flag", ""), p.value("relative_standard_error", nlohmann::json()));
 }
 
 nlohmann::json summarize_calibration(const fs::path& dir)
@@ -148,6 +138,22 @@ nlohmann::json summarize_simulation(const fs::path& dir, const nlohmann::json& s
   return j;
 }
 } // namespace
+
+nlohmann::json read_result_json(const fs::path& file)
+{
+  std::ifstream f(file);
+  return nlohmann::json::parse(f);
+}
+
+std::string identifiability_in_words(const std::string& flag, const nlohmann::json& relative_se)
+{
+  if (!flag.empty())
+    return flag;
+  return relative_se.is_number()
+             ? "identifiable: relative standard error " +
+                   std::to_string(static_cast<int>(std::lround(100 * relative_se.get<double>()))) + " %"
+             : "identifiable";
+}
 
 PoleVolumes pole_volumes(const nlohmann::json& surface, double z_nipple)
 {

@@ -22,6 +22,11 @@ inline constexpr double ideal_lower_pole_share = 0.55;
 
 nlohmann::json summarize_result(const std::string& kind, const Config& c,
                                 const std::filesystem::path& result_dir);
+/// A JSON file of a result (nlohmann's parse error if malformed).
+nlohmann::json read_result_json(const std::filesystem::path& file);
+/// A fitted parameter's identifiability in words: its flag, else its
+/// relative standard error (`relative_se`, null if unknown) in per cent.
+std::string identifiability_in_words(const std::string& flag, const nlohmann::json& relative_se);
 /// The volume between a half-breast skin surface document
 /// (surface_<posture>.json, deformed vertices) and the chest-wall plane
 /// y = 0, by the divergence theorem with F = (0, y, 0) (zero on that plane,

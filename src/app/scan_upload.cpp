@@ -71,16 +71,8 @@ void reply_scan_job(const httplib::Request& req, httplib::Response& res, JobStor
                                          {"posture", u.posture}, {"mesh_size", u.mesh_size},
                                          {"bytes", req.body.size()}}}});
   fs::rename(file, store.folder(r.id) / name);
-  if (!queue.submit(r.id))
-  {
-    store.update(r.id, [](JobRecord& rec) {
-      rec.state = JobState::failed;
-      rec.error_kind = "error";
-      rec.error = "the job queue is full";
-      rec.finished = utc_now();
-    });
+  if (!submit_or_fail(store, queue, r.id))
     return reply_error(res, 429, "the job queue is full: try again when a job has finished");
-  }
   reply_json(res, 202, {{"id", r.id}});
 }
 } // namespace

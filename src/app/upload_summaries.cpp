@@ -1,31 +1,20 @@
 #include "upload_summaries.hpp"
 #include "fit_parameters.hpp"
 #include "result_summary.hpp"
-#include <cmath>
-#include <fstream>
+#include <array>
 
 namespace breastsim::app
 {
 namespace fs = std::filesystem;
 namespace
 {
-nlohmann::json read_json(const fs::path& file)
-{
-  std::ifstream f(file);
-  return nlohmann::json::parse(f);
-}
+nlohmann::json read_json(const fs::path& file) { return read_result_json(file); }
 
 /// The flag of the fit in words, or its relative standard error (first
 /// order in ln p: SE(ln p) = SE(p) / p).
 std::string identifiability(const nlohmann::json& p)
 {
-  const std::string flag = p.value("flag", "");
-  if (!flag.empty())
-    return flag;
-  const auto se = p.value("se_log", nlohmann::json());
-  return se.is_number() ? "identifiable: relative standard error " +
-                              std::to_string(static_cast<int>(std::lround(100 * se.get<double>()))) + " %"
-                        : "identifiable";
+  return identifiability_in_words(p.value("flag", ""), p.value("se_log", nlohmann::json()));
 }
 } // namespace
 
