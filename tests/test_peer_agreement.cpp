@@ -211,6 +211,23 @@ TEST(PeerAgreement, ApexDisplacementP2WithinRichardsonValue)
   EXPECT_NEAR(peers_coarse.u_z / richardson, 1.0, 1e-4);
 }
 
+// The whole P2 table of docs/VERIFICATION.md: every level of the family
+// within 0.05 % of the Richardson value from lc = 0.0135 on, and the finest
+// two within 2e-5 of each other (the sequence levels off).
+TEST(PeerAgreement, LongApexDisplacementP2Table)
+{
+  constexpr double richardson = -6.7387e-03;
+  std::vector<double> u_z;
+  for (const char* lc : {"0.018", "0.0135", "0.009", "0.00675", "0.00405", "0.00303"})
+  {
+    const PeerResult r = solve_peer_problem(lc, 2);
+    if (std::string(lc) != "0.018")
+      EXPECT_NEAR(r.u_z / richardson, 1.0, 5e-4) << "lc " << lc;
+    u_z.push_back(r.u_z);
+  }
+  EXPECT_NEAR(u_z[5] / u_z[4], 1.0, 2e-5);
+}
+
 // The same problem as a user runs it: a case file whose geometry.mesh_file
 // names the mesh relative to the case file, through the simulate job.
 TEST(PeerAgreement, SimulateJobReadsTheCasesMeshFile)
