@@ -4,6 +4,7 @@
 #include "job_evaluations.hpp"
 #include "job_request.hpp"
 #include "result_archive.hpp"
+#include "scan_job.hpp"
 #include <fstream>
 #include <sstream>
 
@@ -44,11 +45,27 @@ fs::path job_file(const JobStore& store, const std::string& id, const std::strin
   return file;
 }
 
+/// A scanned breast's surgery names a finished scan job of this server,
+/// whose neutral case exists (the request's id only: no path).
+void check_scan_of(const nlohmann::json& request, const JobStore& store)
+{
+  if (!request.contains("scan"))
+    return;
+  const std::string id = request["scan"];
+  const auto scan = store.get(id);
+  if (!scan || scan->kind != "scan" || scan->state != JobState::done ||
+      !fs::is_regular_file(store.folder(id) / scan_neutral_case))
+    throw InputError("scan = \"" + id + "\": not a finished scan job of this server (upload the scan and wait "
+                     "until its job is done)");
+}
+
 void post_job(const httplib::Request& req, httplib::Response& res, JobStore& store, JobQueue& queue)
 {
   std::string id;
   with_json_body(req, res, [&](const nlohmann::json& body) {
-    const auto r = store.create(checked_job_request(body));
+    const auto request = checked_job_request(body);
+    check_scan_of(request, store);
+    const auto r = store.create(request);
     id = r.id;
     if (!submit_or_fail(store, queue, r.id))
       id.clear();

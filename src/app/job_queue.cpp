@@ -42,6 +42,8 @@ nlohmann::json outcome_of(const fs::path& folder, int exit_code)
 /// and a scan job by their own readers, the rest from result/.
 nlohmann::json summary_of(const JobRecord& r, const fs::path& folder)
 {
+  if (r.kind == "surgery" && r.options.contains("scan")) // the scan's neutral case with the plan, as solved
+    return summarize_result(r.kind, Config::from_file(folder / "result" / "case.resolved.toml"), folder / "result");
   const Config c = case_from_overrides(r.overrides);
   if (r.kind == "scan")
     return summarize_scan(c, folder);

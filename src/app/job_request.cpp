@@ -2,6 +2,7 @@
 #include "case_request.hpp"
 #include "errors.hpp"
 #include "fit_parameters.hpp"
+#include "job_id.hpp"
 #include "measurements.hpp"
 #include "plan_api.hpp"
 #include "recording_api.hpp"
@@ -45,7 +46,29 @@ void check_calibration(nlohmann::json& request)
     throw InputError("max_evals = " + m.dump().substr(0, 40) + " is out of range: allowed [1, 5000]");
   calibration::check_calibrate_request(calibrate_request(request, ""), start);
 }
+
+/// A surgery on a scan's breast: "scan" names the scan job; the overrides
+/// may set the plan (incision.*), the postures and the surgery's own keys,
+/// applied to the scan's neutral case; the incision is checked on the
+/// scanned skin by the job (full_breast_surgery's messages).
+void check_scan_surgery(const nlohmann::json& request)
+{
+  const auto& scan = request["scan"];
+  if (!scan.is_string() || !is_job_id(scan.get<std::string>()))
+    throw InputError("scan = " + scan.dump().substr(0, 40) + ": expected the id of a finished scan job "
+                     "(16 hexadecimal digits)");
+  case_from_overrides(request["overrides"]);
+  for (const auto& [key, _] : request["overrides"].items())
+    if (!is_scan_surgery_key(key))
+      throw InputError("key '" + key + "' is not applied to the surgery of a scanned breast (its case is the "
+                       "scan's neutral case): allowed incision.*, postures.*, surgery.*");
+}
 } // namespace
+
+bool is_scan_surgery_key(const std::string& key)
+{
+  return key.rfind("incision.", 0) == 0 || key.rfind("postures.", 0) == 0 || key.rfind("surgery.", 0) == 0;
+}
 
 nlohmann::json checked_job_request(const nlohmann::json& body)
 {
@@ -68,6 +91,12 @@ nlohmann::json checked_job_request(const nlohmann::json& body)
     check_fields(body, {"kind", "overrides", "vary"}, "sweep");
     incision_document(request["overrides"]); // the plan swept around must exist
     sweep_grid(request.value("vary", nlohmann::json()), case_from_overrides(request["overrides"]));
+    return request;
+  }
+  if (kind == "surgery" && body.contains("scan"))
+  {
+    check_fields(body, {"kind", "overrides", "scan"}, "surgery");
+    check_scan_surgery(request);
     return request;
   }
   check_fields(body, {"kind", "overrides"}, kind);

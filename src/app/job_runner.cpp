@@ -85,7 +85,13 @@ void run(const fs::path& folder)
     return run_scan_job(folder, request, rules, progress_into(folder));
   const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
   const Progress progress = progress_into(folder); // the structured progress channel
-  if (kind == "surgery")
+  if (kind == "surgery" && request.contains("scan")) // the scan job's folder beside this one
+  {
+    if (!is_job_id(request.at("scan").get<std::string>()))
+      throw InputError("scan: not a job id");
+    run_scan_surgery(folder.parent_path() / request.at("scan").get<std::string>(), request, target, progress);
+  }
+  else if (kind == "surgery")
     surgery(c, target, MPI_COMM_WORLD, progress);
   else if (kind == "simulate")
     simulate(c, target, MPI_COMM_WORLD, progress);

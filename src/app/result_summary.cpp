@@ -51,6 +51,12 @@ nlohmann::json summarize_surgery(const Config& c, const fs::path& dir, const nlo
                       {"incision", s.at("incision")},
                       {"ideal", ideals()},
                       {"postures", nlohmann::json::array()}};
+  if (s.value("model", "") == "full breast") // a scanned breast: both sutures' gaps
+  {
+    j["model"] = "full breast";
+    j["max_gap_keel_mm"] = 1e3 * s.at("suture").at("max_gap_keel_m").get<double>();
+    j["max_gap_chest_mm"] = 1e3 * s.at("suture").at("max_gap_chest_m").get<double>();
+  }
   const auto &pre = s.at("preop"), &post = s.at("postop");
   for (std::size_t i = 0; i < pre.size() && i < post.size(); ++i)
   {

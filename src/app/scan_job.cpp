@@ -1,5 +1,9 @@
 #include "scan_job.hpp"
+#include "case_request.hpp"
 #include "config.hpp"
+#include "errors.hpp"
+#include "full_breast_surgery.hpp"
+#include "job_request.hpp"
 #include "neutral_state.hpp"
 #include "posture.hpp"
 #include "scan_model_job.hpp"
@@ -37,5 +41,20 @@ void run_scan_job(const fs::path& folder, const nlohmann::json& request, const O
   neutral.validate();
   simulate(neutral, OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD), MPI_COMM_WORLD,
            progress.part(0.6, 1.0, "simulate: "));
+}
+
+void run_scan_surgery(const fs::path& scan_folder, const nlohmann::json& request, const OutputTarget& out,
+                      const Progress& progress)
+{
+  Config c = Config::from_file(scan_folder / scan_neutral_case);
+  const Config given = case_from_overrides(request.at("overrides")); // each value parsed as --set parses it
+  for (const auto& [key, _] : request.at("overrides").items())
+  {
+    if (!is_scan_surgery_key(key))
+      throw InputError("key '" + key + "' is not applied to the surgery of a scanned breast");
+    c.set(key, given.values().at(key));
+  }
+  c.validate();
+  full_breast_surgery(c, out, MPI_COMM_WORLD, progress);
 }
 } // namespace breastsim::app

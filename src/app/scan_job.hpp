@@ -16,8 +16,18 @@ namespace breastsim::app
 /// The postures the scanned breast is simulated in.
 inline const char* scan_postures[] = {"standing", "supine", "all_fours"};
 
+/// The scan's neutral case in its job folder (written by neutral-state).
+inline const char* scan_neutral_case = "neutral/case.reference.toml";
+
 /// `request`: {"kind": "scan", "scan": {"file", "format", "units", "posture",
 /// "mesh_size"}} as the server checked it. Throws the library's errors.
 void run_scan_job(const std::filesystem::path& folder, const nlohmann::json& request, const OutputRules& rules,
                   const Progress& progress);
+
+/// A surgery job on a scanned breast (`request`: {"kind": "surgery",
+/// "scan": id, "overrides"} as the server checked it): full_breast_surgery
+/// of the scan job's neutral case (`scan_folder`/neutral/case.reference.toml)
+/// with the request's incision, posture and surgery keys, into `out`.
+void run_scan_surgery(const std::filesystem::path& scan_folder, const nlohmann::json& request,
+                      const OutputTarget& out, const Progress& progress);
 } // namespace breastsim::app

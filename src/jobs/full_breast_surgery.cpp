@@ -8,6 +8,7 @@
 #include "on_root.hpp"
 #include "output.hpp"
 #include "output_options.hpp"
+#include "posture.hpp"
 #include "reference_reset.hpp"
 #include "skin_solid.hpp"
 #include "timer.hpp"
@@ -119,11 +120,14 @@ void suture_full_breast(Model& post, const Config& c, const std::filesystem::pat
 }
 } // namespace
 
-FullBreastSurgeryResult full_breast_surgery(const Config& c, const OutputTarget& out, MPI_Comm comm)
+FullBreastSurgeryResult full_breast_surgery(const Config& c, const OutputTarget& out, MPI_Comm comm,
+                                            const Progress& progress)
 {
   FullBreastSurgeryResult r;
+  const double postures = static_cast<double>(requested_postures(c).size()), stages = 2 * postures + 3;
   const CaseOptions case_options = CaseOptions::from(c);
   check_picture_tools(comm);
+  progress.report("meshing", 0);
   FullBreastBodies bodies = mesh_full_breast_surgery(c, comm, r); // refuses bad incisions first
   OutputDir dir(out, comm);
   std::filesystem::create_directories(dir.path() / "preop");
@@ -140,24 +144,30 @@ FullBreastSurgeryResult full_breast_surgery(const Config& c, const OutputTarget&
     apply_parameters(c, pre);
     r.base.volume_pre = pre.volume();
     log::info("surgery: pre-operative postures (full breast)");
-    r.base.pre = solve_postures(pre, ObservableProbe(pre, case_options.geometry.nipple()), c, dir.path() / "preop");
+    r.base.pre = solve_postures(pre, ObservableProbe(pre, case_options.geometry.nipple()), c, dir.path() / "preop",
+                                nullptr, progress.part(1 / stages, (1 + postures) / stages, "pre-operative "));
     r.base.seconds_pre = clock.seconds();
   }
   Model post(bodies.cut, Constraints{false, case_options.fixed_base});
   apply_parameters(c, post);
+  progress.report("sutures", (1 + postures) / stages);
   suture_full_breast(post, c, dir.path(), r);
   {
     Stopwatch clock("surgery: post-operative postures");
     log::info("surgery: post-operative postures");
-    r.base.post = solve_postures(post, ObservableProbe(post, r.base.new_nipple_neutral), c, dir.path() / "postop");
+    r.base.post = solve_postures(post, ObservableProbe(post, r.base.new_nipple_neutral), c, dir.path() / "postop",
+                                 nullptr,
+                                 progress.part((2 + postures) / stages, (2 + 2 * postures) / stages, "post-operative "));
     r.base.seconds_post = clock.seconds();
   }
   write_json(dir.path() / "summary.json", to_json(r), comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
+  progress.report("pictures", (stages - 1) / stages);
   render_pictures(dir.path() / "preop", {}, comm);
   render_pictures(dir.path() / "postop", {dir.path() / "preop"}, comm);
   write_view_page(dir.path() / "postop", dir.path() / "preop", comm);
   dir.commit();
+  progress.report("finished", 1);
   return r;
 }
 

@@ -28,6 +28,10 @@ struct FullBreastSurgeryResult
 bool is_full_breast_case(const Config& c);
 
 /// The whole surgery job on a full breast; writes into `out` (replaced only on success).
-FullBreastSurgeryResult full_breast_surgery(const Config& c, const OutputTarget& out, MPI_Comm comm);
+/// `progress`: as surgery()'s: meshing, each pre-operative posture, the
+/// sutures, each post-operative posture, the pictures (2 N + 3 stages of
+/// equal share), finished.
+FullBreastSurgeryResult full_breast_surgery(const Config& c, const OutputTarget& out, MPI_Comm comm,
+                                            const Progress& progress = {});
 nlohmann::json to_json(const FullBreastSurgeryResult& r);
 } // namespace breastsim

@@ -5,6 +5,7 @@
 # Host); the planning checks; a surgery job whose numbers equal the CLI's
 # `breastsim surgery` on the same keys; a calibration equal to `calibrate`'s,
 # its evaluations (the progress channel, live and final) equal to its report's;
+# a surgery on an uploaded scan's breast equal to the CLI's on the scan's neutral case;
 # a failing solve and a killed job process (the server stays up); cancelling a queued and a running job
 # (nothing of them left); a restart that finds the finished job again; two
 # jobs at once with --workers 2.
@@ -137,6 +138,36 @@ for p, q in zip(a, b):
 print("ok: the scan job's model, neutral state and postures equal scan-model, neutral-state and simulate "
       "on the same file (%d tetrahedra, standing projection %.2f mm)" % (load(job, "model/summary.json")["tetrahedra"],
                                                                        1e3 * a[0]["projection_m"]))
+PY
+
+# Surgery on the scanned breast: the app's job on the scan job's neutral case equals the CLI's
+# `breastsim surgery` on that case file with the same plan.
+uploads scan_surgery "$work/scan_job.json" "$work/scan_surgery.json"
+scan_id=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["id"])' "$work/scan_job.json")
+"$BIN" -q surgery "$work/data/jobs/$scan_id/neutral/case.reference.toml" --set incision.a_deg=35 \
+  --set postures.names=standing --out "$work/cli-scan-surgery" > /dev/null
+/usr/bin/python3 - "$work/scan_surgery.json" "$work/cli-scan-surgery/summary.json" <<'PY'
+import json, sys
+job = json.load(open(sys.argv[1]))
+app, cli = job["summary"], json.load(open(sys.argv[2]))
+def same(a, b, what):
+    assert abs(a - b) <= 1e-9 * max(1.0, abs(b)), (what, a, b)
+assert app["model"] == cli["model"] == "full breast"
+for k in ("resected_volume_m3", "resected_volume_mesh_m3", "volume_pre_m3", "volume_remaining_m3"):
+    same(app[k], cli[k], k)
+for k in ("max_gap_keel_m", "max_gap_chest_m"):
+    same(app["suture"][k], cli["suture"][k], k)
+for stage in ("preop", "postop"):
+    for p, q in zip(app[stage], cli[stage], strict=True):
+        for a, b in zip(p["nipple_m"], q["nipple_m"], strict=True):
+            same(a, b, f"{stage} {p['posture']} nipple")
+s = job["record"]["summary"]
+same(s["resected_volume_cm3"], 1e6 * cli["resected_volume_m3"], "cm3")
+same(s["max_gap_keel_mm"], 1e3 * cli["suture"]["max_gap_keel_m"], "keel gap")
+same(s["max_gap_chest_mm"], 1e3 * cli["suture"]["max_gap_chest_m"], "chest gap")
+same(s["postures"][0]["post"]["nipple_to_base_mm"], 1e3 * cli["postop"][0]["nipple_m"][1], "new nipple to base")
+print("ok: the scanned breast's surgery equals the CLI's on the scan's neutral case (%.3f cm3 resected, "
+      "new nipple y, z = %.2f, %.2f mm)" % (s["resected_volume_cm3"], *[1e3 * v for v in cli["postop"][0]["nipple_m"][1:]]))
 PY
 
 checks failures | tee "$work/failures.txt"

@@ -7,6 +7,10 @@ Usage: upload_checks.py PORT PHASE [ARGS...]
                               foreign files, content types, sizes: nothing stored, no job); a
                               scan job: the stored bytes, its progress channel, the scanned
                               breast in three postures, unmirrored; its summary to OUT
+  scan_surgery SCAN_JOB OUT   refused scanned-breast surgeries (an unknown or non-scan job, a cap
+                              key, an incision the scanned skin cannot hold: the library's message);
+                              a surgery on the scan job's neutral case (standing), its progress
+                              channel as surgery()'s; the record and summary.json to OUT
 surgery_progress() is called by server_checks.py on the surgery job it runs.
 """
 import json
@@ -31,6 +35,16 @@ def channel(api, job_id):
 
 def surgery_progress(api, job_id, seen, postures):
     """The surgery's stages as the library reports them, and the record's bar from them."""
+    by_stage = surgery_channel(api, job_id, postures)
+    running = [(p, st) for p, st in seen if st != "starting"]
+    check(running and all(st in by_stage and abs(p - min(by_stage[st], 0.99)) < 1e-12 for p, st in running) and
+          all(a[0] <= b[0] for a, b in zip(running, running[1:])),
+          f"the record's progress while it ran is the channel's last entry ({len(running)} polls, "
+          f"{len(set(running))} distinct stages seen, non-decreasing)")
+
+
+def surgery_channel(api, job_id, postures):
+    """The surgery's stages in its progress channel as surgery() reports them: {stage: fraction}."""
     n = len(postures)
     stages = (["meshing"] + [f"pre-operative posture {p} ({k + 1} of {n})" for k, p in enumerate(postures)] +
               ["sutures"] + [f"post-operative posture {p} ({k + 1} of {n})" for k, p in enumerate(postures)] +
@@ -41,12 +55,7 @@ def surgery_progress(api, job_id, seen, postures):
           all(abs(e["fraction"] - k / total) < 1e-12 for k, e in enumerate(entries[:-1])) and entries[-1]["fraction"] == 1,
           f"the surgery's progress channel: {len(entries)} stages in order at k / {total} "
           f"({', '.join(e['stage'] for e in entries)})")
-    by_stage = {e["stage"]: e["fraction"] for e in entries}
-    running = [(p, st) for p, st in seen if st != "starting"]
-    check(running and all(st in by_stage and abs(p - min(by_stage[st], 0.99)) < 1e-12 for p, st in running) and
-          all(a[0] <= b[0] for a, b in zip(running, running[1:])),
-          f"the record's progress while it ran is the channel's last entry ({len(running)} polls, "
-          f"{len(set(running))} distinct stages seen, non-decreasing)")
+    return {e["stage"]: e["fraction"] for e in entries}
 
 
 def recording(api, rec_file, data, out):
@@ -164,6 +173,35 @@ def scan(api, stl_file, data, out):
     json.dump(job, open(out, "w"))
 
 
+def scan_surgery(api, scan_job_file, out):
+    scan_id = json.load(open(scan_job_file))["id"]
+    plan = {"incision.a_deg": 35, "postures.names": ["standing"]}
+    for body, what in [({"scan": "0123456789abcdef"}, "not a finished scan job"),
+                       ({"scan": "../../etc"}, "expected the id of a finished scan job"),
+                       ({"scan": scan_id, "overrides": {"geometry.R": 0.07}},
+                        "key 'geometry.R' is not applied to the surgery of a scanned breast")]:
+        s, r = api.json("POST", "/api/jobs", {"kind": "surgery", "overrides": plan, **body})
+        check(s == 400 and what in r["error"], f"a scanned breast's surgery refused: {r.get('error')}")
+    s, r = api.json("POST", "/api/jobs", {"kind": "surgery", "scan": scan_id,
+                                          "overrides": {**plan, "incision.h": 0.3}})
+    check(s == 202, f"an incision is checked on the scanned skin by the job ({s} {r})")
+    job = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
+    check(job["state"] == "failed" and job["error_kind"] == "input" and "incision.h" in job["error"],
+          f"an impossible plan on the scanned breast fails with the library's message ({job['error']})")
+    s, r = api.json("POST", "/api/jobs", {"kind": "surgery", "scan": scan_id, "overrides": plan})
+    check(s == 202, f"a surgery on the scanned breast is accepted ({s} {r})")
+    job = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
+    check(job["state"] == "done", f"the scanned breast's surgery is done ({job['state']}: {job['error']})")
+    surgery_channel(api, r["id"], ["standing"])
+    sm = job["summary"]
+    check(sm["model"] == "full breast" and sm["resected_volume_cm3"] > 0 and len(sm["postures"]) == 1,
+          f"full-breast surgery: {sm['resected_volume_cm3']:.1f} cm3 resected, gaps keel "
+          f"{sm['max_gap_keel_mm']:.4f} mm, chest {sm['max_gap_chest_mm']:.4f} mm")
+    s, _, data = api.raw("GET", f"/api/jobs/{r['id']}/files/summary.json")
+    check(s == 200, "its summary.json is served")
+    json.dump({"record": job, "summary": json.loads(data)}, open(out, "w"))
+
+
 if __name__ == "__main__":
     api = Api(int(sys.argv[1]))
     phase = sys.argv[2]
@@ -171,5 +209,7 @@ if __name__ == "__main__":
         recording(api, sys.argv[3], sys.argv[4], sys.argv[5])
     elif phase == "scan":
         scan(api, sys.argv[3], sys.argv[4], sys.argv[5])
+    elif phase == "scan_surgery":
+        scan_surgery(api, sys.argv[3], sys.argv[4])
     else:
         sys.exit(f"unknown phase {phase}")
