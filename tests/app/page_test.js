@@ -229,9 +229,30 @@ async function patientFiles(page, work, errors) {
         shown.vertices === standing.vertices.length / 3,
         `the page draws the scanned breast in 3D as it is, not mirrored (${shown.vertices} vertices)`);
   check(!(await page.$eval("#plan-scan-note", (e) => e.hidden)) &&
-        /full-breast surgery .* is not yet run by the app/.test(await page.textContent("#simulate-scan-note")),
-        "the plan and simulate steps say what the scanned breast cannot do yet");
+        /full-breast surgery on the scan's neutral case.*Not yet: the plan's preview and its check draw the incision on the parametric cap/
+          .test(await page.textContent("#simulate-scan-note")),
+        "the plan and simulate steps say what the scanned breast can and cannot do yet");
   await page.screenshot({ path: path.join(shots, "1-scan.png") });
+  await scanSurgery(page, id);
+}
+
+// The surgery on the scanned breast: its job runs on the scan's neutral case; the page shows its numbers.
+async function scanSurgery(page, scanId) {
+  const before = await page.evaluate(() => localStorage.getItem("breastsim.job.surgery"));
+  check(await page.isChecked("#surgery-on-scan") && !(await page.$eval("#run", (b) => b.disabled)),
+        "with a scan ready the surgery runs on the scanned breast");
+  await page.click("#run");
+  await page.waitForFunction(() => /the scanned breast \(full-breast surgery\)/.test(document.querySelector("#result").textContent),
+                             null, { timeout: 300000 });
+  const sid = await page.evaluate(() => localStorage.getItem("breastsim.job.surgery"));
+  const job = await page.evaluate(async (i) => (await fetch("/api/jobs/" + i)).json(), sid);
+  const s = job.summary;
+  check(sid !== before && job.options.scan === scanId && s.model === "full breast" &&
+        await page.textContent('[data-key="resected_volume_cm3"]') === s.resected_volume_cm3.toFixed(1) &&
+        await page.textContent('[data-key="post_nipple_to_base_mm"]') === s.postures[0].post.nipple_to_base_mm.toFixed(1),
+        `the scanned breast's surgery shown with its job's numbers (${s.resected_volume_cm3.toFixed(1)} cm³, ` +
+        `new nipple to base ${s.postures[0].post.nipple_to_base_mm.toFixed(1)} mm)`);
+  await page.screenshot({ path: path.join(shots, "4-scan-surgery.png") });
 }
 
 async function walk(page, errors) {

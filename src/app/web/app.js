@@ -233,6 +233,9 @@ function showScan(job) {
     $(id).textContent = SCAN_LIMITS;
     $(id).hidden = false;
   }
+  $("#surgery-on-scan-label").hidden = false;
+  $("#surgery-on-scan").checked = true;
+  $("#run").disabled = !canRun("surgery");
   $("#view-mode").value = "scan";
   $("#view-posture").innerHTML = job.summary.postures.map((p) => `<option>${p.posture}</option>`).join("");
   $("#view-posture").value = job.options.scan.posture;
@@ -332,6 +335,7 @@ const jobs = { surgery: null, calibrate: null, sweep: null, scan: null };
 
 function canRun(kind) {
   if (kind === "scan") return jobs.scan === null;
+  if (kind === "surgery" && surgeryOnScan()) return jobs.surgery === null; // the job checks the plan on the scanned skin
   return jobs[kind] === null &&
     (kind === "calibrate" ? state.measurements !== null || state.recording !== null : state.incisionOk);
 }
@@ -344,8 +348,18 @@ async function submit(kind, body) {
   attach(kind, r.json.id, true);
 }
 
+// On the scanned breast (when a scan is ready and chosen): the scan's neutral
+// case with the plan (incision.*) and the postures; else the cap of the fields.
+function surgeryOnScan() {
+  return !!state.scan && $("#surgery-on-scan").checked;
+}
+
 function runSurgery() {
-  submit("surgery", { kind: "surgery", overrides: caseOverrides() });
+  if (!surgeryOnScan()) return submit("surgery", { kind: "surgery", overrides: caseOverrides() });
+  const overrides = {};
+  for (const [k, v] of Object.entries(caseOverrides()))
+    if (k.startsWith("incision.") || k === "postures.names") overrides[k] = v;
+  submit("surgery", { kind: "surgery", scan: state.scan.id, overrides });
 }
 
 function runCalibration() {
@@ -461,9 +475,13 @@ async function showResult(job) {
   const s = job.summary;
   state.result = job;
   const off = (v, ideal, tol) => (Math.abs(v - ideal) <= tol ? "ideal-ok" : "ideal-off");
+  const gaps = s.model === "full breast"
+    ? `the scanned breast (full-breast surgery); largest gaps: keel faces ${s.max_gap_keel_mm.toFixed(4)} mm, ` +
+      `P2 face to the chest ${s.max_gap_chest_mm.toFixed(4)} mm`
+    : `largest suture gap ${s.max_suture_gap_mm.toFixed(3)} mm`;
   let html = `<p>Resected: <b data-key="resected_volume_cm3">${f1(s.resected_volume_cm3)}</b> cm³, ` +
     `<b data-key="resected_weight_g">${f1(s.resected_weight_g)}</b> g (ρ = ${s.tissue_rho_kg_m3} kg/m³); ` +
-    `largest suture gap ${s.max_suture_gap_mm.toFixed(3)} mm.</p><table id="result-table"><thead><tr><th>posture</th>` +
+    `${gaps}.</p><table id="result-table"><thead><tr><th>posture</th>` +
     "<th>nipple y,z pre</th><th>nipple y,z post</th><th>nipple→base pre</th><th>nipple→base post</th>" +
     "<th>lowest z pre</th><th>lowest z post</th><th>lower pole pre</th><th>lower pole post</th></tr></thead><tbody>";
   for (const p of s.postures) {
@@ -585,6 +603,7 @@ async function main() {
   buildMeasurementForm();
   buildSliders();
   $("#run").addEventListener("click", runSurgery);
+  $("#surgery-on-scan").addEventListener("change", () => { $("#run").disabled = !canRun("surgery"); });
   $("#cancel").addEventListener("click", () => cancel("surgery"));
   $("#cal-run").addEventListener("click", runCalibration);
   $("#cal-cancel").addEventListener("click", () => cancel("calibrate"));

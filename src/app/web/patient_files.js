@@ -10,10 +10,11 @@ export const RECORDING_FORMAT = "breastsim-recording/1";
 
 // What the page says the scanned breast cannot do yet, and why.
 export const SCAN_LIMITS =
-  "Not yet with the scanned breast in this app: the plan draws the incision on the parametric cap " +
-  "(geometry.R, H) only, and the library's full-breast surgery (breastsim surgery on the scan's neutral case) " +
-  "is not yet run by the app, nor is a sweep on it. The plan, the surgery and the sweep below use the cap " +
-  "model (R, H) of the breast model; so does the calibration.";
+  "With the scanned breast: \"Run surgery\" (\"on the scanned breast\" ticked) runs the library's " +
+  "full-breast surgery on the scan's neutral case with this plan's a, s, h, d, as breastsim surgery on that " +
+  "case; the job refuses a plan the scanned skin cannot hold with the library's reason. Not yet: the plan's " +
+  "preview and its check draw the incision on the parametric cap (geometry.R, H) only, not on the scanned " +
+  "skin; the sweep and the calibration use the cap model (R, H) of the breast model.";
 
 // The recording's check (POST /api/recording/check) in words.
 export function recordingText(name, info) {
