@@ -152,22 +152,7 @@ FullBreastSurgeryResult full_breast_surgery(const Config& c, const OutputTarget&
   apply_parameters(c, post);
   progress.report("sutures", (1 + postures) / stages);
   suture_full_breast(post, c, dir.path(), r);
-  {
-    Stopwatch clock("surgery: post-operative postures");
-    log::info("surgery: post-operative postures");
-    r.base.post = solve_postures(post, ObservableProbe(post, r.base.new_nipple_neutral), c, dir.path() / "postop",
-                                 nullptr,
-                                 progress.part((2 + postures) / stages, (2 + 2 * postures) / stages, "post-operative "));
-    r.base.seconds_post = clock.seconds();
-  }
-  write_json(dir.path() / "summary.json", to_json(r), comm);
-  write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
-  progress.report("pictures", (stages - 1) / stages);
-  render_pictures(dir.path() / "preop", {}, comm);
-  render_pictures(dir.path() / "postop", {dir.path() / "preop"}, comm);
-  write_view_page(dir.path() / "postop", dir.path() / "preop", comm);
-  dir.commit();
-  progress.report("finished", 1);
+  finish_surgery(post, c, dir, r.base, [&] { return to_json(r); }, progress, postures, stages, comm);
   return r;
 }
 

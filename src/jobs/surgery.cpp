@@ -291,7 +291,16 @@ SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm, c
   progress.report("sutures", (1 + postures) / stages);
   incise_and_suture(post, c, dir.path(), r);
 
-  // 4. Post-operative postures from the new reference (sutures stay knitted).
+  // 4. Post-operative postures, summary, pictures.
+  finish_surgery(post, c, dir, r, [&] { return to_json(r); }, progress, postures, stages, comm);
+  return r;
+}
+
+void finish_surgery(Model& post, const Config& c, OutputDir& dir, SurgeryResult& r,
+                    const std::function<nlohmann::json()>& summary, const Progress& progress,
+                    double postures, double stages, MPI_Comm comm)
+{
+  // Post-operative postures from the new reference (sutures stay knitted).
   {
     Stopwatch clock("surgery: post-operative postures");
     log::info("surgery: post-operative postures");
@@ -299,8 +308,7 @@ SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm, c
                             progress.part((2 + postures) / stages, (2 + 2 * postures) / stages, "post-operative "));
     r.seconds_post = clock.seconds();
   }
-
-  write_json(dir.path() / "summary.json", to_json(r), comm);
+  write_json(dir.path() / "summary.json", summary(), comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
   // Pictures: each stage's postures, post-op against pre-op, and the 3D page.
   progress.report("pictures", (stages - 1) / stages);
@@ -309,7 +317,6 @@ SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm, c
   write_view_page(dir.path() / "postop", dir.path() / "preop", comm);
   dir.commit();
   progress.report("finished", 1);
-  return r;
 }
 
 nlohmann::json to_json(const SurgeryResult& r)

@@ -6,6 +6,7 @@
 #include "incision.hpp"
 #include "simulate.hpp"
 #include "surgery_options.hpp"
+#include <functional>
 
 namespace breastsim
 {
@@ -55,6 +56,18 @@ FoldSite fold_site(Model& model);
 SutureReport close_sutures(Model& model, const Config& c);
 /// Largest distance of the suture faces' nodes to their target planes.
 double max_suture_gap(const Model& model);
+
+class OutputDir;
+
+/// The steps after the sutures, shared by the cap's and the full breast's
+/// surgery: the post-operative postures of `post` from its new reference
+/// (r.post, r.seconds_post; probed at r.new_nipple_neutral), then
+/// summary.json (`summary`, made after them), case.resolved.toml, the
+/// pictures and the 3D page; commits `dir`. Progress after the share
+/// (2 + postures) / stages, as surgery() places its stages.
+void finish_surgery(Model& post, const Config& c, OutputDir& dir, SurgeryResult& r,
+                    const std::function<nlohmann::json()>& summary, const Progress& progress,
+                    double postures, double stages, MPI_Comm comm);
 
 /// The whole surgery job; writes into `out` (replaced only on success).
 /// `progress`: meshing, each pre-operative posture, the sutures, each
