@@ -3,7 +3,8 @@
 // reference (neutral) and deformed vertex positions, gathered to rank 0. A
 // half model (with a symmetry face, x >= 0) is flagged to be mirrored
 // x -> -x by its readers; a full breast (no symmetry face, e.g. a scan) is
-// the whole skin and is drawn as it is. P2 meshes contribute their corner nodes.
+// the whole skin and is drawn as it is. A P2 mesh's curved skin triangles are
+// sampled as 4 x 4 flat sub-triangles each.
 #include "model.hpp"
 #include <array>
 #include <filesystem>
