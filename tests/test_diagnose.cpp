@@ -5,10 +5,13 @@
 #include "candidates.hpp"
 #include "diagnose.hpp"
 #include "errors.hpp"
+#include "fit_state.hpp"
 #include "fixtures.hpp"
 #include "least_squares.hpp"
 #include "recording.hpp"
+#include "half_cap.hpp"
 #include "surface_distance.hpp"
+#include "surface_export.hpp"
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -277,4 +280,106 @@ TEST(Candidates, RulesSetTheCaseKeys)
   EXPECT_TRUE(lig.flag("terms.suspensory_ligament"));
   EXPECT_DOUBLE_EQ(lig.number("ligament.k"), 1234.0);
   EXPECT_THROW(candidate("gland_core").with(Config(), 0.0), std::invalid_argument);
+}
+
+namespace
+{
+/// Largest |distance of a skin triangle's centroid from the cap's sphere - Rs|
+/// of the default case's skin surface at element order `order`.
+double largest_centroid_offset(int order, double h)
+{
+  const Config c = fixtures::coarse_case(order, h);
+  auto m = fixtures::make_model(c);
+  const SkinSurface s = gather_skin_surface(*m);
+  const double R = c.number("geometry.R"), H = c.number("geometry.H");
+  const double Rs = meshes::sphere_radius(R, H), yc = H - Rs;
+  double worst = 0;
+  for (const auto& t : s.triangles)
+  {
+    double g[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d)
+        g[d] += s.reference[t[k]][d] / 3;
+    worst = std::max(worst, std::abs(std::hypot(g[0], g[1] - yc, g[2]) - Rs));
+  }
+  return worst;
+}
+} // namespace
+
+TEST(SkinSurface, P2SkinKeepsTheCurvedGeometry)
+{
+  // Corner facets of a 14 mm mesh lie up to h^2 / 8 Rs inside the sphere
+  // (sagitta: 0.35 mm at the longest edges); a P2 facet sampled 4 x 4 is
+  // within the P2 geometry's own error and the sub-facets' sagitta.
+  const double p1 = largest_centroid_offset(1, 0.014), p2 = largest_centroid_offset(2, 0.014);
+  EXPECT_GT(p1, 1e-4);
+  EXPECT_LT(p2, 0.15 * p1) << "P1 " << p1 << " P2 " << p2;
+  // The deformed surface is the quadratic map of the P2 displacement: a
+  // translation of every node moves every sampled point by it.
+  auto m = fixtures::make_model(fixtures::coarse_case(2, 0.016));
+  auto u = m->displacement()->x()->mutable_array();
+  for (std::size_t i = 0; i < u.size(); ++i)
+    u[i] = (i % 3 == 2) ? -0.01 : 0.002;
+  const SkinSurface s = gather_skin_surface(*m);
+  ASSERT_GT(s.triangles.size(), 16u);
+  EXPECT_EQ(s.triangles.size() % 16, 0u);
+  for (std::size_t i = 0; i < s.reference.size(); ++i)
+  {
+    EXPECT_NEAR(s.deformed[i][0] - s.reference[i][0], 0.002, 1e-12);
+    EXPECT_NEAR(s.deformed[i][2] - s.reference[i][2], -0.01, 1e-12);
+  }
+}
+
+namespace
+{
+/// r(y) = A (y - y*) + b with b orthogonal to A's columns, y = ln(mu, lambda).
+PointEvaluation linear_residuals(const Config& c)
+{
+  const double A[5][2] = {{1, 0}, {0, 1}, {1, 1}, {2, -1}, {0.5, 3}};
+  const double b[5] = {1, 1, -1, 0, 0}; // A^T b = 0
+  const double d[2] = {std::log(c.number("tissue.mu") / 450.0),
+                       std::log(c.number("tissue.lambda") / 9000.0)};
+  PointEvaluation e;
+  e.distances.assign(1, {});
+  for (int i = 0; i < 5; ++i)
+  {
+    e.r.push_back(A[i][0] * d[0] + A[i][1] * d[1] + b[i]);
+    e.distances[0].push_back(1e-3 * e.r.back());
+  }
+  e.raw = e.distances[0];
+  return e;
+}
+} // namespace
+
+TEST(Diagnose, GaussNewtonRefitFromANearbyFit)
+{
+  // From (400, 8000) with the exact Jacobian one step lands on the optimum
+  // (450, 9000), chi2 = |b|^2 = 3, in two evaluations; with a Jacobian of
+  // the wrong sign the step raises chi2 and the start is kept.
+  std::vector<Free> frees;
+  for (const std::string key : {"tissue.mu", "tissue.lambda"})
+    frees.push_back({key, "Pa", 1.0, 1e6, [key](Config& c, double v) { c.set(key, v); }, 1.0});
+  Config base;
+  base.set("tissue.mu", 400.0);
+  base.set("tissue.lambda", 8000.0);
+  FitState from;
+  from.values = {400.0, 8000.0};
+  from.J = {{1, 0}, {0, 1}, {1, 1}, {2, -1}, {0.5, 3}};
+  int evaluations = 0;
+  const Evaluate ev = [&](const Config& c)
+  {
+    ++evaluations;
+    return linear_residuals(c);
+  };
+  const FitState s = gauss_newton_refit(ev, base, frees, from, "test");
+  EXPECT_EQ(evaluations, 2);
+  EXPECT_NEAR(s.values[0], 450.0, 1e-9);
+  EXPECT_NEAR(s.values[1], 9000.0, 1e-8);
+  EXPECT_NEAR(s.chi2, 3.0, 1e-12);
+  for (auto& row : from.J)
+    for (double& x : row)
+      x = -x;
+  const FitState kept = gauss_newton_refit(ev, base, frees, from, "test");
+  EXPECT_NEAR(kept.values[0], 400.0, 1e-9);
+  EXPECT_GT(kept.chi2, 3.0);
 }

@@ -37,6 +37,9 @@ void check_options(const DiagnoseOptions& o)
   if (!(o.min_misfit_share >= 0 && o.min_misfit_share < 1))
     throw InputError(fmt::format("--min-misfit-share = {} is out of range: allowed [0, 1) (0: off)",
                                  o.min_misfit_share));
+  if (!(o.min_score_fraction >= 0 && o.min_score_fraction <= 1))
+    throw InputError(fmt::format("--min-score-fraction = {} is out of range: allowed [0, 1] (0: off)",
+                                 o.min_score_fraction));
   if (!(o.refinement_order >= 0 && o.refinement_order <= 4))
     throw InputError(fmt::format("--refinement-order = {} is out of range: allowed [0, 4] (0: off)",
                                  o.refinement_order));
@@ -150,17 +153,19 @@ Evidence& evidence_of(Round& rd, const std::string& name)
 }
 
 /// The refinement check of the round's best: the current model and the model
-/// with the candidate refitted on the finer mesh; their LR there and
+/// with the candidate refitted on the finer mesh (one Gauss-Newton step from
+/// the diagnosis mesh's fits: the optimum moves little); their LR there and
 /// extrapolated to the continuum (evidence.hpp). Returns the candidate's fit
 /// on the finer mesh.
 std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vector<Free>& trial)
 {
   Evidence& e = evidence_of(rd, rd.tested);
   const Config fine_base = finer(s.current, s.o.mesh_ratio);
-  const FitState without = fit(*s.fine_ev, fine_base, s.frees, log_values(s.state), s.lsq,
-                               "refinement check: current model on the finer mesh");
-  auto with = std::make_unique<FitState>(fit(*s.fine_ev, fine_base, trial, log_values(rd.after),
-                                             s.lsq, "refinement check: with " + e.candidate));
+  const Evaluate on_fine = [&](const Config& c) { return (*s.fine_ev)(c); };
+  const FitState without = gauss_newton_refit(on_fine, fine_base, s.frees, s.state,
+                                              "refinement check: current model on the finer mesh");
+  auto with = std::make_unique<FitState>(gauss_newton_refit(
+      on_fine, fine_base, trial, rd.after, "refinement check: with " + e.candidate));
   e.refinement_checked = true;
   e.lr_fine = without.chi2 - with->chi2;
   e.lr_continuum = continuum_lr(e.lr, e.lr_fine, s.o.mesh_ratio, s.o.refinement_order);
@@ -180,7 +185,8 @@ struct Refit
 };
 
 /// Step 6: refit the (at most o.refits) best-scoring candidates with a
-/// p-value below `level`, each with its evidence (cheap_evidence) in rd.
+/// p-value below `level` whose score passes the refit screen, each with its
+/// evidence (cheap_evidence) in rd.
 std::vector<Refit> refit_candidates(Search& s, Round& rd, double level)
 {
   std::vector<Refit> refits;
@@ -189,6 +195,12 @@ std::vector<Refit> refit_candidates(Search& s, Round& rd, double level)
     const CandidateScore& sc = rd.scores[k];
     if (sc.p_value >= level)
       break;
+    if (sc.score < s.o.min_score_fraction * (rd.critical + sc.mesh_allowance))
+    {
+      rd.screened_out.push_back(sc.name);
+      rd.screen_fraction = s.o.min_score_fraction;
+      continue;
+    }
     const Candidate& cand = candidate(sc.name);
     Refit r{cand.name, s.frees, {}, 0, rd.critical + sc.mesh_allowance};
     r.frees.push_back(free_candidate(cand));

@@ -47,6 +47,11 @@ struct DiagnoseOptions
   /// physics no candidate has, the mesh's error beyond the noise floor); a
   /// term that removes only a small part of it stands in for that error.
   double min_misfit_share = 0.3;
+  /// Refit screen: a candidate is refitted only if its score S (the
+  /// linearised LR) reaches this fraction of its critical value with the
+  /// mesh allowance; below it the refit could not pass (refits' LR were
+  /// within 0.85-1.15 of their score on the independent truth).
+  double min_score_fraction = 0.5;
   /// MPI ranks per forward solve: the Jacobian columns and candidate probes
   /// are solved by groups of this many ranks side by side (0: all ranks).
   int ranks_per_case = 0;
@@ -118,6 +123,8 @@ struct Round
   std::vector<Region> regions;
   std::vector<CandidateScore> scores; ///< sorted, best first
   std::vector<std::pair<std::string, double>> refits; ///< candidates refitted, their LR
+  std::vector<std::string> screened_out; ///< significant, not refitted: S below the refit screen
+  double screen_fraction = 0;            ///< the refit screen's fraction of the critical value
   std::string tested;                 ///< best refitted candidate ("" = none significant)
   FitState after;                     ///< valid if !tested.empty()
   double lr = 0, critical = 0;        ///< LR of `tested`; critical value of the level

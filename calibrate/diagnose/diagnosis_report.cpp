@@ -69,8 +69,14 @@ std::string candidates_text(const Round& r, const Recording& rec)
   for (const auto& c : r.scores)
     s += fmt::format("    {:<20} S = {:9.1f}   p = {:.2g}   allowance {:.1f}\n", c.name, c.score,
                      c.p_value, c.mesh_allowance);
+  for (const auto& c : r.scores)
+    if (std::find(r.screened_out.begin(), r.screened_out.end(), c.name) != r.screened_out.end())
+      s += fmt::format("  {}: not refitted: its score {:.1f} is below {:g} x its critical value {:.1f} "
+                       "({:.1f} + mesh allowance {:.1f}); its refit could not pass\n",
+                       c.name, c.score, r.screen_fraction, r.critical + c.mesh_allowance, r.critical,
+                       c.mesh_allowance);
   if (r.tested.empty())
-    s += "  no candidate is significant\n";
+    s += r.screened_out.empty() ? "  no candidate is significant\n" : "  no candidate is refitted\n";
   else
   {
     std::string refits;
@@ -213,6 +219,7 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
                              {"p_value", s.p_value},
                              {"linearised_estimate", s.estimate},
                              {"mesh_allowance", s.mesh_allowance}});
+    q["screened_out"] = r.screened_out;
     if (!r.tested.empty())
     {
       q["tested"] = r.tested;

@@ -1,5 +1,6 @@
 #include "fit_state.hpp"
 #include "fit_parameters.hpp"
+#include "least_squares.hpp"
 #include "log.hpp"
 #include <algorithm>
 #include <cmath>
@@ -121,6 +122,59 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
   const Config c = config_at(base, frees, r.y);
   const PointEvaluation e = ev(c);
   return make_state(c, frees, r.y, r.J, e, r.evaluations + 1);
+}
+
+namespace
+{
+/// The Gauss-Newton step -(J^T J)^-1 J^T r (empty if J^T J is singular).
+std::vector<double> gauss_newton_step(const Matrix& J, const std::vector<double>& r, std::size_t n)
+{
+  Matrix A(n, std::vector<double>(n, 0.0));
+  std::vector<double> b(n, 0.0), delta;
+  for (std::size_t i = 0; i < r.size(); ++i)
+    for (std::size_t p = 0; p < n; ++p)
+    {
+      b[p] -= J[i][p] * r[i];
+      for (std::size_t q = 0; q < n; ++q)
+        A[p][q] += J[i][p] * J[i][q];
+    }
+  if (!solve_dense(A, b, delta))
+    delta.clear();
+  return delta;
+}
+} // namespace
+
+FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::vector<Free>& frees,
+                            const FitState& from, const std::string& label)
+{
+  constexpr int max_steps = 3;       // chord steps with from's Jacobian
+  constexpr double step_tol = 0.02;  // stop when max |delta ln p| falls below this
+  std::vector<double> y = log_values(from);
+  const Config c0 = config_at(base, frees, y);
+  FitState best = make_state(c0, frees, y, from.J, ev(c0), 1);
+  const double chi2_start = best.chi2;
+  const std::size_t n = y.size();
+  for (int k = 0; k < max_steps && n > 0 && from.J.size() == best.r.size(); ++k)
+  {
+    const auto delta = gauss_newton_step(from.J, best.r, n);
+    const auto y_best = log_values(best);
+    double largest = 0;
+    for (std::size_t p = 0; p < delta.size(); ++p)
+    {
+      y[p] = std::clamp(y_best[p] + delta[p], std::log(frees[p].lo), std::log(frees[p].hi));
+      largest = std::max(largest, std::abs(delta[p]));
+    }
+    if (delta.empty() || largest < step_tol)
+      break;
+    const Config c = config_at(base, frees, y);
+    FitState next = make_state(c, frees, y, from.J, ev(c), best.evaluations + 1);
+    if (!(next.chi2 < best.chi2))
+      break;
+    best = std::move(next);
+  }
+  log::info("{}: Gauss-Newton steps from the nearby fit, chi2 {:.1f} -> {:.1f}", label, chi2_start,
+            best.chi2);
+  return best;
 }
 
 std::vector<double> log_values(const FitState& s)

@@ -33,6 +33,16 @@ std::vector<double> start_values(const std::vector<Free>& frees);
 /// state of `base`). Throws SolveError.
 FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,
              const std::vector<double>& y0, const LsqOptions& o, const std::string& label);
+/// The fit of `frees` of `base` (e.g. the same model on a finer mesh)
+/// from a nearby fit `from` of the same parameters: Gauss-Newton (chord)
+/// steps with from's Jacobian,
+///   y <- y - (J^T J)^-1 J^T r(y),
+/// clamped to the bounds, each kept only if it lowers chi2, at most 3, until
+/// max |step| < 0.02; 2-4 evaluations instead of a Levenberg-Marquardt fit.
+/// Its chi2 is evaluated, not predicted.
+using Evaluate = std::function<PointEvaluation(const Config&)>;
+FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::vector<Free>& frees,
+                            const FitState& from, const std::string& label);
 /// ln of the fitted values of `s`.
 std::vector<double> log_values(const FitState& s);
 /// P(N(0, 1) > z).

@@ -43,6 +43,9 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--max-rounds", o->d.max_rounds, "rounds of discovery")->capture_default_str();
   app->add_option("--refits", o->d.refits, "significant candidates refitted per round (the largest "
                                            "likelihood ratio wins)")->capture_default_str();
+  app->add_option("--min-score-fraction", o->d.min_score_fraction,
+                  "refit a significant candidate only if its score reaches this fraction of its "
+                  "critical value with the mesh allowance (0: refit every one)")->capture_default_str();
   app->add_option("--mesh-ratio", o->d.mesh_ratio, "numerical noise floor: the fitted model is "
                                                    "also solved on a mesh this many times finer "
                                                    "(<= 1: off)")->capture_default_str();
