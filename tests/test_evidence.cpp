@@ -126,4 +126,14 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   o.min_misfit_share = 0;
   judge(e, o, 0.5e-3);
   EXPECT_TRUE(e.failed.empty());
+  // After a found term the later share (0.5) applies: LR 400 of 1000 = 40 %.
+  e.misfit_before = 1000;
+  e.terms_before = 1;
+  judge(e, o, 0.5e-3);
+  ASSERT_EQ(e.failed.size(), 1u);
+  EXPECT_NE(e.failed[0].find("explains 40 % of the misfit"), std::string::npos) << e.failed[0];
+  EXPECT_NE(e.failed[0].find("after a found term"), std::string::npos) << e.failed[0];
+  e.misfit_before = 700; // 57 %
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty());
 }

@@ -13,11 +13,11 @@ diagnosis discretisation of docs/DIAGNOSE.md (P2 at 12 mm):
 
     nice -n 19 BUILD/breastsim -q diagnose REC --case cases/default.toml \
         --set base.fixed=true --set terms.base_springs=false --set terms.skin=false \
-        --set geometry.order=2 --set geometry.mesh_size=0.012 \
-        --fit mu,lambda --out OUT/NAME/diagnosis [EXTRA]
+        --order 2 --mesh-size 0.012 --fit mu,lambda --out OUT/NAME/diagnosis [EXTRA]
 
-(EXTRA comes last: `--extra "--set geometry.order=1 --set geometry.mesh_size=0.008"`
-diagnoses on the case's P1 mesh instead.)
+(`--order 2 --mesh-size 0.012` is diagnose's default, written out; EXTRA
+comes last: `--extra "--order 0 --mesh-size 0"` diagnoses on the case's P1
+mesh instead.)
 
 Resumable: a recording whose OUT/NAME/diagnosis/diagnosis.json exists is not
 run again (unless --rerun). Writes OUT/summary.json and OUT/summary.md:
@@ -43,7 +43,7 @@ REPO = HERE.parent.parent
 CANDIDATES = ["base_springs", "skin", "suspensory_ligament", "gland_core"]
 BASELINE_SETS = ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"]
 # the diagnosis discretisation: P2 with its curved skin at 12 mm (docs/DIAGNOSE.md)
-DISCRETISATION_SETS = ["geometry.order=2", "geometry.mesh_size=0.012"]
+DISCRETISATION = ["--order", "2", "--mesh-size", "0.012"]
 FIT = "mu,lambda"
 # the targets ("Done when")
 TARGET_EXACT, TARGET_COVERAGE, TARGET_MEDIAN_S, MIN_CONTROLS = 0.95, 0.90, 120.0, 12
@@ -56,8 +56,9 @@ def diagnose_command(binary, recording, out_dir, case, extra, nice, mpi=None):
     if mpi:
         cmd += ["mpirun", "-n", str(mpi[0])]
     cmd += [str(binary), "-q", "diagnose", str(recording), "--case", str(case)]
-    for s in BASELINE_SETS + DISCRETISATION_SETS:
+    for s in BASELINE_SETS:
         cmd += ["--set", s]
+    cmd += DISCRETISATION
     cmd += ["--fit", FIT, "--out", str(out_dir)] + list(extra)
     if mpi:
         cmd += ["--ranks-per-case", str(mpi[1])]
@@ -184,7 +185,7 @@ def fmt(x, spec=".3g"):
 def markdown(s, rows, command):
     out = [f"Command: `{command}`", "",
            "Each diagnosis: `breastsim -q diagnose REC --case CASE "
-           + " ".join(f"--set {x}" for x in BASELINE_SETS + DISCRETISATION_SETS)
+           + " ".join(f"--set {x}" for x in BASELINE_SETS) + " " + " ".join(DISCRETISATION)
            + f" --fit {FIT} --out ... [EXTRA]`", ""]
     cols = CANDIDATES + ["none"]
     out += ["| hidden \\ named | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
@@ -331,8 +332,8 @@ args = sys.argv[1:]
 assert args[:2] == ["-q", "diagnose"], args
 rec = json.loads(pathlib.Path(args[2]).read_text())
 sets = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
-assert sets == ["base.fixed=true", "terms.base_springs=false", "terms.skin=false",
-                "geometry.order=2", "geometry.mesh_size=0.012"], sets
+assert sets == ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"], sets
+assert args[args.index("--order") + 1] == "2" and args[args.index("--mesh-size") + 1] == "0.012"
 assert args[args.index("--fit") + 1] == "mu,lambda"
 out = pathlib.Path(args[args.index("--out") + 1]); out.mkdir(parents=True)
 answers = json.loads(pathlib.Path(__file__).with_name("answers.json").read_text())

@@ -8,6 +8,7 @@
 #include "evidence.hpp"
 #include "fit_parameters.hpp"
 #include "fit_state.hpp"
+#include "geometry_options.hpp"
 #include "log.hpp"
 #include "mesh_error.hpp"
 #include "residual_regions.hpp"
@@ -37,24 +38,47 @@ void check_options(const DiagnoseOptions& o)
   if (!(o.min_misfit_share >= 0 && o.min_misfit_share < 1))
     throw InputError(fmt::format("--min-misfit-share = {} is out of range: allowed [0, 1) (0: off)",
                                  o.min_misfit_share));
+  if (!(o.min_misfit_share_later >= 0 && o.min_misfit_share_later < 1))
+    throw InputError(fmt::format("--min-misfit-share-later = {} is out of range: allowed [0, 1) (0: off)",
+                                 o.min_misfit_share_later));
   if (!(o.min_score_fraction >= 0 && o.min_score_fraction <= 1))
     throw InputError(fmt::format("--min-score-fraction = {} is out of range: allowed [0, 1] (0: off)",
                                  o.min_score_fraction));
   if (!(o.refinement_order >= 0 && o.refinement_order <= 4))
     throw InputError(fmt::format("--refinement-order = {} is out of range: allowed [0, 4] (0: off)",
                                  o.refinement_order));
+  if (o.order < 0 || o.order > 2)
+    throw InputError(fmt::format("--order = {} is out of range: allowed 1, 2 (0: the case's)", o.order));
+  if (!(o.mesh_size >= 0 && o.mesh_size <= 0.1))
+    throw InputError(fmt::format("--mesh-size = {} m is out of range: allowed (0, 0.1] (0: the case's)",
+                                 o.mesh_size));
   if (o.max_rounds < 1 || o.max_rounds > 10)
     throw InputError(fmt::format("--max-rounds = {} is out of range: allowed [1, 10]", o.max_rounds));
 }
 
-/// The current model with the recording's a-priori values (named like --fit).
-Config with_known(const Config& current, const Recording& rec)
+/// The current model with the recording's a-priori values (named like --fit),
+/// on the diagnosis discretisation (o.order, o.mesh_size; a user's mesh file
+/// keeps its mesh).
+Config with_known(const Config& current, const Recording& rec, const DiagnoseOptions& o)
 {
   Config c = current;
   for (const auto& [name, value] : rec.known)
     c.set(fit_alias(name).key, value);
+  if (o.order > 0)
+    c.set("geometry.order", std::int64_t(o.order));
+  if (o.mesh_size > 0 && c.text("geometry.mesh_file").empty())
+    c.set("geometry.mesh_size", o.mesh_size);
   c.validate();
   return c;
+}
+
+/// `diagnosed` with the element order and mesh size of the user's case.
+Config on_users_mesh(Config diagnosed, const Config& users)
+{
+  diagnosed.set("geometry.order", users.integer("geometry.order"));
+  diagnosed.set("geometry.mesh_size", users.number("geometry.mesh_size"));
+  diagnosed.validate();
+  return diagnosed;
 }
 
 /// One diagnosis in progress: the model found so far and its fit.
@@ -62,7 +86,7 @@ struct Search
 {
   Search(const Recording& r, const Config& c, const DiagnoseOptions& opt, MPI_Comm comm)
       : rec(r), o(opt), groups(comm, opt.ranks_per_case, "--ranks-per-case"), lsq(opt.lsq),
-        ev(r, groups.comm(), &groups), current(with_known(c, r)), frees(frees_from_fit(o.fit, current))
+        ev(r, groups.comm(), &groups), current(with_known(c, r, opt)), frees(frees_from_fit(o.fit, current))
   {
     if (groups.groups() > 1)
       lsq.groups = &groups;
@@ -84,6 +108,7 @@ struct Search
   std::vector<Free> frees;                 ///< its free parameters
   FitState state;                          ///< its fit
   std::unique_ptr<FitState> fine_state;    ///< its fit on the finer mesh, if the refinement check made one
+  int found = 0;                           ///< terms found so far
 };
 
 /// Steps 1-2: fit the current model; with a finer mesh, the noise floor and
@@ -137,6 +162,7 @@ Evidence cheap_evidence(const Search& s, const Candidate& cand, const FitState& 
   e.lr = lr;
   e.critical = critical;
   e.misfit_before = s.state.chi2 - s.state.dof;
+  e.terms_before = s.found;
   effect_size(s.state, after, e);
   e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, e.effect_rms_mm_all);
   const auto without = held_out_chi2(s.state, s.rec), with = held_out_chi2(after, s.rec);
@@ -285,6 +311,7 @@ bool discovery_round(Search& s, Diagnosis& d)
   if (!rd.accepted)
     return false;
   d.discovered.push_back(rd.tested);
+  ++s.found;
   s.frees = trial;
   s.current = rd.after.config; // the candidate term is on from now on
   s.state = rd.after;
@@ -322,6 +349,11 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
     widen_by_model_form(d.final_fit, d.se_model_form);
   }
   d.surfaces = s.ev.surfaces(d.final_fit.config);
+  const HalfCapSpec mesh = HalfCapSpec::from(s.current);
+  d.order = mesh.order;
+  d.mesh_size = mesh.mesh_file.empty() ? mesh.mesh_size : 0.0;
+  d.mesh_ratio = o.mesh_ratio;
+  d.final_fit.config = on_users_mesh(d.final_fit.config, current);
   if (s.fine_ev)
     d.posture_solves += s.fine_ev->posture_solves();
   d.posture_solves += s.ev.posture_solves();

@@ -18,6 +18,12 @@ struct DiagnoseOptions
   std::vector<std::string> candidates; ///< library subset to test ("": every applicable one)
   double alpha = 1e-3;                 ///< false-discovery level of one round (all candidates)
   int max_rounds = 2;
+  /// The diagnosis discretisation of the parametric cap: element order and
+  /// mesh size the fits are made on (0: the case's). `breastsim diagnose`
+  /// defaults to P2 at 12 mm (docs/DIAGNOSE.md); the written case keeps the
+  /// case's own order and mesh size.
+  int order = 0;
+  double mesh_size = 0;
   bool discover = true;                ///< false: only fit the current model (calibration)
   int refits = 2;                      ///< significant candidates refitted per round (best LR wins)
   int neighbours = 12;                 ///< k of the neighbourhood means (localisation)
@@ -47,6 +53,10 @@ struct DiagnoseOptions
   /// physics no candidate has, the mesh's error beyond the noise floor); a
   /// term that removes only a small part of it stands in for that error.
   double min_misfit_share = 0.3;
+  /// The same for a term tested after another was found: the misfit left
+  /// then holds the found term's own shape error, which other candidates
+  /// imitate; a further term must explain at least this fraction of it.
+  double min_misfit_share_later = 0.5;
   /// Refit screen: a candidate is refitted only if its score S (the
   /// linearised LR) reaches this fraction of its critical value with the
   /// mesh allowance; below it the refit could not pass (refits' LR were
@@ -68,6 +78,7 @@ struct Evidence
   double effect_at_null_edge_mm = 0;           ///< effect at the interval end nearest q = 0
   std::vector<double> held_out_gain;           ///< per posture: chi2_k without - with the term
   double misfit_before = 0;                    ///< chi2 - dof of the model before the term
+  int terms_before = 0;                        ///< terms found before this one
   bool refinement_checked = false;
   double lr_fine = 0, lr_continuum = 0;        ///< refinement check (refinement_checked)
   std::vector<std::string> failed;             ///< reasons for rejection (empty: holds every rule checked)
@@ -148,6 +159,9 @@ struct Diagnosis
   double noise_sigma = 0;
   std::vector<double> mesh_error;     ///< e_h per posture (distances) [m]
   std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
+  int order = 1;                      ///< element order of the diagnosis mesh
+  double mesh_size = 0;               ///< its mesh size [m] (0: a user's mesh file)
+  double mesh_ratio = 0;              ///< the finer check mesh: mesh_size / mesh_ratio (<= 1: none)
   int posture_solves = 0;
   double seconds = 0;
 };

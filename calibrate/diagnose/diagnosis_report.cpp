@@ -198,6 +198,7 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
                                 {"sigma_eff_mm", 1e3 * d.sigma_eff[p]}});
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
+  j["diagnosis_mesh"] = {{"order", d.order}, {"mesh_size_m", d.mesh_size}, {"mesh_ratio", d.mesh_ratio}};
   j["rounds"] = nlohmann::json::array();
   for (const auto& r : d.rounds)
   {
@@ -253,6 +254,10 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
     n += static_cast<int>(p.points.size());
   s += fmt::format("Diagnosis of {} recorded points in {} postures (noise {:.3f} mm)\n", n,
                    rec.postures.size(), 1e3 * d.noise_sigma);
+  if (d.mesh_size > 0)
+    s += fmt::format("  diagnosis mesh: P{} at {:.1f} mm{}\n", d.order, 1e3 * d.mesh_size,
+                     d.mesh_ratio > 1 ? fmt::format(", check mesh {:.1f} mm", 1e3 * d.mesh_size / d.mesh_ratio)
+                                      : std::string());
   for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
     if (d.mesh_error[p] > 0)
       s += fmt::format("  numerical noise floor {:<12} mesh error {:.3f} mm -> sigma_eff {:.3f} mm\n",

@@ -174,13 +174,16 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
   if (o.held_out_check && !e.held_out_gain.empty() && !(gain > 0))
     e.failed.push_back(fmt::format("it does not improve the prediction of held-out postures "
                                    "(chi2 gain {:.1f})", gain));
-  // Model-form share: LR >= share (chi2 - dof) of the model before the term.
+  // Model-form share: LR >= share (chi2 - dof) of the model before the term
+  // (a stricter share after a term was found: its shape error is in that misfit).
   const double misfit_share = e.misfit_before > 0 ? e.lr / e.misfit_before : 1.0;
-  if (o.min_misfit_share > 0 && misfit_share < o.min_misfit_share)
+  const double min_share = e.terms_before > 0 ? o.min_misfit_share_later : o.min_misfit_share;
+  if (min_share > 0 && misfit_share < min_share)
     e.failed.push_back(fmt::format("it explains {:.0f} % of the misfit it is tested against (LR {:.1f} of "
-                                   "chi2 - dof = {:.1f}), less than {:g} %: the rest has a shape no "
+                                   "chi2 - dof = {:.1f}), less than {:g} %{}: the rest has a shape no "
                                    "candidate has, and the term would stand in for it",
-                                   100 * misfit_share, e.lr, e.misfit_before, 100 * o.min_misfit_share));
+                                   100 * misfit_share, e.lr, e.misfit_before, 100 * min_share,
+                                   e.terms_before > 0 ? " (after a found term)" : ""));
   if (e.refinement_checked && !(e.lr_fine > e.critical && e.lr_continuum > e.critical))
     e.failed.push_back(fmt::format("its LR does not survive refinement: {:.1f} on the finer mesh, "
                                    "{:.1f} extrapolated to the continuum, against {:.1f}",

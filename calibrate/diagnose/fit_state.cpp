@@ -164,8 +164,8 @@ FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::v
       y[p] = std::clamp(y_best[p] + delta[p], std::log(frees[p].lo), std::log(frees[p].hi));
       largest = std::max(largest, std::abs(delta[p]));
     }
-    if (delta.empty() || largest < step_tol)
-      break;
+    if (delta.empty() || (k > 0 && largest < step_tol))
+      break; // the first step is always tried: it measures how far the optimum moved
     const Config c = config_at(base, frees, y);
     FitState next = make_state(c, frees, y, from.J, ev(c), best.evaluations + 1);
     if (!(next.chi2 < best.chi2))

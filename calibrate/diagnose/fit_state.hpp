@@ -37,8 +37,8 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
 /// from a nearby fit `from` of the same parameters: Gauss-Newton (chord)
 /// steps with from's Jacobian,
 ///   y <- y - (J^T J)^-1 J^T r(y),
-/// clamped to the bounds, each kept only if it lowers chi2, at most 3, until
-/// max |step| < 0.02; 2-4 evaluations instead of a Levenberg-Marquardt fit.
+/// clamped to the bounds, each kept only if it lowers chi2, at most 3, the
+/// first always tried, then until max |step| < 0.02; 2-4 evaluations instead of a Levenberg-Marquardt fit.
 /// Its chi2 is evaluated, not predicted.
 using Evaluate = std::function<PointEvaluation(const Config&)>;
 FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::vector<Free>& frees,

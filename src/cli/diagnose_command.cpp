@@ -43,6 +43,12 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--max-rounds", o->d.max_rounds, "rounds of discovery")->capture_default_str();
   app->add_option("--refits", o->d.refits, "significant candidates refitted per round (the largest "
                                            "likelihood ratio wins)")->capture_default_str();
+  o->d.order = 2;
+  o->d.mesh_size = 0.012;
+  app->add_option("--order", o->d.order, "element order of the diagnosis mesh (0: the case's; "
+                                         "docs/DIAGNOSE.md)")->capture_default_str();
+  app->add_option("--mesh-size", o->d.mesh_size, "mesh size of the diagnosis mesh [m] (0: the case's; "
+                                                 "a mesh file keeps its mesh)")->capture_default_str();
   app->add_option("--min-score-fraction", o->d.min_score_fraction,
                   "refit a significant candidate only if its score reaches this fraction of its "
                   "critical value with the mesh allowance (0: refit every one)")->capture_default_str();
@@ -55,6 +61,8 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--min-misfit-share", o->d.min_misfit_share,
                   "an accepted term must explain this fraction of the misfit (chi2 - dof) of the "
                   "model before it (0: off)")->capture_default_str();
+  app->add_option("--min-misfit-share-later", o->d.min_misfit_share_later,
+                  "the same for a term tested after another was found (0: off)")->capture_default_str();
   app->add_option("--refinement-order", o->d.refinement_order,
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Missing-physics diagnosis on concealed data: a recording is made
 # by the richer model (hidden candidate HIDDEN switched on, or none for the
-# control) on a finer mesh, with noise, at random skin points; `diagnose`
+# control) on a finer P2 mesh, with noise, at random skin points; `diagnose`
 # sees only the recording and the current model. Asserts: the right
 # candidate is named (and nothing else), the hidden value lies in the
 # reported 95 % interval, the fit improves to the noise level; the control
@@ -20,7 +20,8 @@ esac
 hide=()
 [ "$hidden" != control ] && hide=(--hidden "$hidden")
 
-"$bin" -q record "$case_file" "${sets[@]}" "${hide[@]}" --seed 7 --mesh-size 0.004 \
+# The truth: P2 at 6 mm (the diagnosis: P2 at 12 mm, its check mesh 8 mm).
+"$bin" -q record "$case_file" "${sets[@]}" --set geometry.order=2 "${hide[@]}" --seed 7 --mesh-size 0.006 \
   --out "$work/recording.json"
 "$bin" -q diagnose "$work/recording.json" --case "$case_file" "${sets[@]}" --out "$work/out" \
   > "$work/log.txt" 2>&1 || { cat "$work/log.txt"; exit 1; }
@@ -79,7 +80,7 @@ expect_fail() {
     echo "FAIL: $what accepted"; exit 1
   fi
   code=$?
-  grep -q "$what" "$work/bad.txt" || { echo "FAIL: message lacks '$what':"; cat "$work/bad.txt"; exit 1; }
+  grep -q -e "$what" "$work/bad.txt" || { echo "FAIL: message lacks '$what':"; cat "$work/bad.txt"; exit 1; }
   [ ! -e "$work/bad" ] || { echo "FAIL: partial output for $what"; exit 1; }
 }
 if [ "$hidden" = control ]; then
@@ -116,6 +117,8 @@ PY
   expect_fail "cannot be read" "$work/missing.json"
   expect_fail "unknown candidate physics 'dark_matter'" "$work/recording.json" --candidates dark_matter
   expect_fail "alpha" "$work/recording.json" --alpha 2
+  expect_fail "--order = 3 is out of range" "$work/recording.json" --order 3
+  expect_fail "--mesh-size = -0.01 m is out of range" "$work/recording.json" --mesh-size -0.01
   sed 's/"noise_sigma":[^,]*/"noise_sigma":-1/' "$work/recording.json" > "$work/neg.json"
   expect_fail "key 'noise_sigma' = -1" "$work/neg.json"
 fi
