@@ -58,7 +58,12 @@ def _common(index):
             "seed": 1700 + index}
 
 
-def recordings():
+def recordings(which="main"):
+    """The benchmark ("main", 42 recordings) or the validation set
+    ("validation", 12 recordings: new shapes, seeds and materials, made after
+    the rules' thresholds were chosen on the main set)."""
+    if which == "validation":
+        return validation_recordings()
     out = []
 
     def add(name, cls, effects):
@@ -80,4 +85,29 @@ def recordings():
         add(f"pair_{a}__{b}", "pair", effects)
     names = [r["name"] for r in out]
     assert len(names) == len(set(names)), "duplicate recording names"
+    return out
+
+
+VALIDATION_OFFSET = 50  # material/posture cycle and seeds 1750+: none shared with the main set
+
+
+def validation_recordings():
+    """2 controls, per candidate one new shape weak and strong, 2 pairs."""
+    out = []
+
+    def add(name, cls, effects):
+        rec = {"name": name, "strength_class": cls, "effects": effects,
+               "target_peak_mm": TARGET_MM.get(cls)}
+        rec.update(_common(VALIDATION_OFFSET + len(out)))
+        out.append(rec)
+
+    for i in range(1, 3):
+        add(f"val_control_{i:02d}", "control", [])
+    for cand, effect in sorted(BY_CANDIDATE.items()):
+        pattern = _pattern(effect, [31, len(cand), ord(cand[0])], 4)
+        for cls in ("weak", "strong"):
+            add(f"val_{cand}_{cls}", cls, [(effect, pattern)])
+    for k, (a, b) in enumerate(PAIRS[:2], start=1):
+        effects = [(BY_CANDIDATE[c], _pattern(BY_CANDIDATE[c], [37, k, j], 4)) for j, c in enumerate((a, b))]
+        add(f"val_pair_{a}__{b}", "pair", effects)
     return out

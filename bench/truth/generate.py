@@ -58,9 +58,13 @@ def parse_args():
     ap.add_argument("--only", action="append", default=[],
                     help="generate only these recordings (repeatable, comma-separated)")
     ap.add_argument("--redo", action="store_true", help="regenerate existing recordings too")
-    ap.add_argument("--out", default=str(HERE), help="folder of recordings/ and manifest.json")
+    ap.add_argument("--out", default=None, help="folder of recordings/ and manifest.json "
+                                                 "(default: bench/truth, or bench/truth/validation)")
     ap.add_argument("--mesh-size", type=float, default=0.006, help="truth mesh size [m] (P2)")
     ap.add_argument("--points", type=int, default=2000, help="skin points per posture")
+    ap.add_argument("--set", dest="which", choices=["main", "validation"], default="main",
+                    help="the benchmark (main, into --out) or the validation set "
+                         "(default --out: bench/truth/validation)")
     a = ap.parse_args()
     a.only = [n for item in a.only for n in item.split(",") if n]
     if a.points < 10:
@@ -212,9 +216,9 @@ def status(out, manifest, spec):
 
 def main():
     a = parse_args()
-    out = Path(a.out)
+    out = Path(a.out) if a.out else (HERE if a.which == "main" else HERE / "validation")
     (out / "recordings").mkdir(parents=True, exist_ok=True)
-    specs = benchmark_set.recordings()
+    specs = benchmark_set.recordings(a.which)
     known = {s["name"] for s in specs}
     unknown = [n for n in a.only if n not in known]
     if unknown:
