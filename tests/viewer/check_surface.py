@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Checks on surface_<posture>.json (the skin exported by `simulate`).
 
-  check_surface.py FILE R H             corners on the neutral cap's sphere, x >= 0,
+  check_surface.py FILE R H [TOL]       vertices on the neutral cap's sphere within TOL
+                                        (default 1e-6 m; P2 skins are sampled inside their
+                                        curved triangles, off the sphere by the P2 geometry's
+                                        error), x >= 0,
                                         outward triangles, displacement field consistent,
                                         flagged as a half model to mirror (mirror_x)
   check_surface.py full FILE            a full breast (no symmetry face): corners of both
@@ -24,13 +27,14 @@ def load(path):
     return d, ref, cur, tri
 
 
-def check_cap(path, R, H):
+def check_cap(path, R, H, tol=1e-6):
     d, ref, cur, tri = load(path)
     rs = (R * R + H * H) / (2 * H)  # sphere radius, centre (0, H - rs, 0)
     centre = np.array([0.0, H - rs, 0.0])
     dist = np.linalg.norm(ref - centre, axis=1)
     assert len(tri) > 100, f"{path}: only {len(tri)} triangles"
-    assert np.abs(dist - rs).max() < 1e-6, f"{path}: reference corners off the sphere"
+    assert np.abs(dist - rs).max() < tol, \
+        f"{path}: reference vertices off the sphere by {np.abs(dist - rs).max()} m (> {tol})"
     assert ref[:, 0].min() > -1e-9 and ref[:, 1].min() > -1e-9, f"{path}: not the half x, y >= 0"
     assert sorted(set(tri.ravel())) == list(range(len(ref))), f"{path}: unused or bad indices"
     p = ref[tri]
@@ -87,4 +91,5 @@ if __name__ == "__main__":
     elif sys.argv[1] == "same":
         check_same(sys.argv[2], sys.argv[3], float(sys.argv[4]))
     else:
-        check_cap(sys.argv[1], float(sys.argv[2]), float(sys.argv[3]))
+        check_cap(sys.argv[1], float(sys.argv[2]), float(sys.argv[3]),
+                  float(sys.argv[4]) if len(sys.argv) > 4 else 1e-6)
