@@ -129,16 +129,12 @@ namespace
 /// The Gauss-Newton step -(J^T J)^-1 J^T r (empty if J^T J is singular).
 std::vector<double> gauss_newton_step(const Matrix& J, const std::vector<double>& r, std::size_t n)
 {
-  Matrix A(n, std::vector<double>(n, 0.0));
-  std::vector<double> b(n, 0.0), delta;
-  for (std::size_t i = 0; i < r.size(); ++i)
-    for (std::size_t p = 0; p < n; ++p)
-    {
-      b[p] -= J[i][p] * r[i];
-      for (std::size_t q = 0; q < n; ++q)
-        A[p][q] += J[i][p] * J[i][q];
-    }
-  if (!solve_dense(A, b, delta))
+  Matrix A;
+  std::vector<double> g, delta;
+  normal_equations(J, r, n, A, g);
+  for (double& x : g)
+    x = -x;
+  if (!solve_dense(A, g, delta))
     delta.clear();
   return delta;
 }

@@ -15,21 +15,6 @@ double sum_squares(const std::vector<double>& r)
   return s;
 }
 
-/// J^T J and J^T r (n unknowns).
-void normal_equations(const Matrix& J, const std::vector<double>& r, std::size_t n, Matrix& A,
-                      std::vector<double>& g)
-{
-  A.assign(n, std::vector<double>(n, 0.0));
-  g.assign(n, 0.0);
-  for (std::size_t i = 0; i < r.size(); ++i)
-    for (std::size_t a = 0; a < n; ++a)
-    {
-      g[a] += J[i][a] * r[i];
-      for (std::size_t b = 0; b < n; ++b)
-        A[a][b] += J[i][a] * J[i][b];
-    }
-}
-
 /// Up to 8 damped steps (J^T J + lambda diag(J^T J)) dy = -J^T r from res.y,
 /// clamped to the bounds, until one decreases chi2 (lambda / 3 after it,
 /// x 4 after each rejected one); res moves there. max_step: the largest
@@ -190,4 +175,19 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
     res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);
   return res;
 }
+
+void normal_equations(const Matrix& J, const std::vector<double>& r, std::size_t n, Matrix& A,
+                      std::vector<double>& g)
+{
+  A.assign(n, std::vector<double>(n, 0.0));
+  g.assign(n, 0.0);
+  for (std::size_t i = 0; i < r.size(); ++i)
+    for (std::size_t a = 0; a < n; ++a)
+    {
+      g[a] += J[i][a] * r[i];
+      for (std::size_t b = 0; b < n; ++b)
+        A[a][b] += J[i][a] * J[i][b];
+    }
+}
+
 } // namespace breastsim::calibration

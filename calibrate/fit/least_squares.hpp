@@ -50,6 +50,11 @@ LsqResult levenberg_marquardt(
     const std::vector<double>& hi, const LsqOptions& o,
     const std::function<void(int, double, const std::vector<double>&)>& progress = {});
 
+/// The normal equations of J (rows: residuals, n columns) and r:
+/// A = J^T J, g = J^T r.
+void normal_equations(const Matrix& J, const std::vector<double>& r, std::size_t n, Matrix& A,
+                      std::vector<double>& g);
+
 /// Solve the small dense system A x = b (Gaussian elimination with partial
 /// pivoting); false if A is singular to working precision.
 bool solve_dense(Matrix A, std::vector<double> b, std::vector<double>& x);

@@ -140,25 +140,28 @@ std::vector<double> local_triangles(const Model& model)
         node[3 + k] = edge_dof(dofs, layout, v[k], v[(k + 1) % 3]);
     ref.clear();
     def.clear();
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i + j <= n; ++i)
+    if (!quadratic) // n = 1: the lattice is the corners themselves
+      for (int k = 0; k < 3; ++k)
       {
-        if (!quadratic) // n = 1: the corners themselves
-        {
-          const std::int32_t c = node[i + 2 * j];
-          ref.push_back({X[3 * c], X[3 * c + 1], X[3 * c + 2]});
-          def.push_back({x[3 * c], x[3 * c + 1], x[3 * c + 2]});
-          continue;
-        }
-        std::array<const double*, 6> pr, pd;
-        for (int k = 0; k < 6; ++k)
-        {
-          pr[k] = &X[3 * node[k]];
-          pd[k] = &x[3 * node[k]];
-        }
-        ref.push_back(quadratic_point(pr, double(i) / n, double(j) / n));
-        def.push_back(quadratic_point(pd, double(i) / n, double(j) / n));
+        const std::int32_t c = node[k];
+        ref.push_back({X[3 * c], X[3 * c + 1], X[3 * c + 2]});
+        def.push_back({x[3 * c], x[3 * c + 1], x[3 * c + 2]});
       }
+    else
+    {
+      std::array<const double*, 6> pr, pd;
+      for (int k = 0; k < 6; ++k)
+      {
+        pr[k] = &X[3 * node[k]];
+        pd[k] = &x[3 * node[k]];
+      }
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i + j <= n; ++i)
+        {
+          ref.push_back(quadratic_point(pr, double(i) / n, double(j) / n));
+          def.push_back(quadratic_point(pd, double(i) / n, double(j) / n));
+        }
+    }
     for (const auto& t : sub)
     {
       for (int k = 0; k < 3; ++k)
