@@ -1,6 +1,7 @@
 // The evidence rules of the diagnosis (calibrate/diagnose/evidence.hpp) on
 // hand-made fits whose answers are known in closed form.
 #include "evidence.hpp"
+#include "separation.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -136,4 +137,44 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   e.misfit_before = 700; // 57 %
   judge(e, o, 0.5e-3);
   EXPECT_TRUE(e.failed.empty());
+}
+
+// d = r_B^2 - r_A^2 = (-1, -1, 1, 1): mean 0, sum of squares 4, so a margin
+// difference of 3 is z = 3 / 2.
+TEST(Separation, VuongZOfTwoFits)
+{
+  FitState a, b;
+  a.r = {1, 1, 0, 0};
+  b.r = {0, 0, 1, 1};
+  EXPECT_NEAR(separation_z(a, b, 3.0), 1.5, 1e-12);
+  EXPECT_NEAR(separation_z(a, b, -3.0), -1.5, 1e-12);
+  EXPECT_TRUE(std::isinf(separation_z(a, a, 1.0)));
+  EXPECT_EQ(separation_z(a, a, 0.0), 0.0);
+}
+
+// An accepted term with a rival is named only when the rival is found too.
+TEST(Separation, InseparableTermIsSetAsideUnlessItsRivalIsFound)
+{
+  Round first;
+  first.accepted = true;
+  first.tested = "skin";
+  first.rivals = {{"suspensory_ligament", 0.4, 41.0}};
+  Diagnosis alone;
+  alone.rounds = {first};
+  alone.discovered = {"skin"};
+  set_aside_inseparable(alone);
+  EXPECT_TRUE(alone.discovered.empty());
+  ASSERT_EQ(alone.undecided.size(), 1u);
+  EXPECT_EQ(alone.undecided[0].used, "skin");
+  EXPECT_EQ(alone.undecided[0].rivals[0].candidate, "suspensory_ligament");
+
+  Round second;
+  second.accepted = true;
+  second.tested = "suspensory_ligament";
+  Diagnosis both;
+  both.rounds = {first, second};
+  both.discovered = {"skin", "suspensory_ligament"};
+  set_aside_inseparable(both);
+  EXPECT_EQ(both.discovered.size(), 2u);
+  EXPECT_TRUE(both.undecided.empty());
 }

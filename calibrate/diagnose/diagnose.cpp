@@ -12,6 +12,7 @@
 #include "log.hpp"
 #include "mesh_error.hpp"
 #include "residual_regions.hpp"
+#include "separation.hpp"
 #include "timer.hpp"
 #include <algorithm>
 #include <cmath>
@@ -52,6 +53,9 @@ void check_options(const DiagnoseOptions& o)
   if (!(o.mesh_size >= 0 && o.mesh_size <= 0.1))
     throw InputError(fmt::format("--mesh-size = {} m is out of range: allowed (0, 0.1] (0: the case's)",
                                  o.mesh_size));
+  if (!(o.min_separation_z >= 0 && o.min_separation_z <= 10))
+    throw InputError(fmt::format("--min-separation-z = {} is out of range: allowed [0, 10] (0: off)",
+                                 o.min_separation_z));
   if (o.max_rounds < 1 || o.max_rounds > 10)
     throw InputError(fmt::format("--max-rounds = {} is out of range: allowed [1, 10]", o.max_rounds));
 }
@@ -256,6 +260,25 @@ std::vector<Refit> refit_candidates(Search& s, Round& rd, double level)
   return refits;
 }
 
+/// The other refits that hold the (cheap) rules and whose margin is within
+/// the separation level of the accepted refits[k]'s (separation.hpp).
+std::vector<Rival> rivals_of(const Search& s, Round& rd, const std::vector<Refit>& refits, std::size_t k)
+{
+  std::vector<Rival> out;
+  for (std::size_t j = 0; j < refits.size() && s.o.min_separation_z > 0; ++j)
+  {
+    if (j == k || !evidence_of(rd, refits[j].name).failed.empty())
+      continue;
+    const double diff = (refits[k].lr - refits[k].critical) - (refits[j].lr - refits[j].critical);
+    const double z = separation_z(refits[k].after, refits[j].after, diff);
+    log::info("candidate '{}' against '{}': margin difference {:.1f}, separation z = {:.2f}",
+              refits[k].name, refits[j].name, diff, z);
+    if (z < s.o.min_separation_z)
+      out.push_back({refits[j].name, z, diff});
+  }
+  return out;
+}
+
 /// Step 7: the first refit (by margin) whose evidence holds, with the
 /// refinement check when it is on; rd.tested/lr/after describe it (or the
 /// best refit when none holds). Returns its free parameters and, from the
@@ -278,7 +301,10 @@ std::pair<std::vector<Free>, std::unique_ptr<FitState>> decide(Search& s, Round&
     if (s.fine_ev && s.o.refinement_order > 0)
       fine = check_refinement(s, rd, r.frees);
     if (evidence_of(rd, r.name).failed.empty())
+    {
+      rd.rivals = rivals_of(s, rd, refits, k);
       return {r.frees, std::move(fine)};
+    }
   }
   return {};
 }
@@ -336,14 +362,14 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
       break; // step 8: nothing (more) is significant
   d.final_fit = s.state;
   // Step 9: the numerical uncertainty of the found values.
-  if (s.fine_ev && (!d.discovered.empty() || d.fit_only) && !s.frees.empty())
+  if (s.fine_ev && (s.found > 0 || d.fit_only) && !s.frees.empty())
   {
     const FitState f = s.fine_state ? *s.fine_state
                                     : fit(*s.fine_ev, finer(s.current, o.mesh_ratio), s.frees,
                                           log_values(s.state), s.lsq, "refit on the finer mesh");
     d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.se_numerical);
   }
-  if (!d.discovered.empty())
+  if (s.found > 0)
   {
     d.se_model_form = posture_jackknife_se(d.final_fit, rec);
     widen_by_model_form(d.final_fit, d.se_model_form);
@@ -357,6 +383,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   if (s.fine_ev)
     d.posture_solves += s.fine_ev->posture_solves();
   d.posture_solves += s.ev.posture_solves();
+  set_aside_inseparable(d);
   d.seconds = stopwatch.seconds();
   d.verdict = verdict_text(d, rec, o.alpha);
   return d;

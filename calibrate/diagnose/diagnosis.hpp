@@ -62,6 +62,11 @@ struct DiagnoseOptions
   /// mesh allowance; below it the refit could not pass (refits' LR were
   /// within 0.85-1.15 of their score on the independent truth).
   double min_score_fraction = 0.5;
+  /// Separation: an accepted term is named only if its margin over its
+  /// critical value beats every other refitted candidate that holds the
+  /// rules by this many standard deviations of Vuong's test (separation.hpp;
+  /// 0: off); otherwise the hidden physics lies between the candidates.
+  double min_separation_z = 1.96;
   /// MPI ranks per forward solve: the Jacobian columns and candidate probes
   /// are solved by groups of this many ranks side by side (0: all ranks).
   int ranks_per_case = 0;
@@ -128,6 +133,21 @@ struct CandidateScore
   double mesh_allowance = 0;
 };
 
+/// A candidate that fits about as well as the accepted one (separation.hpp).
+struct Rival
+{
+  std::string candidate;
+  double z = 0;            ///< Vuong's z of the accepted candidate over this one
+  double margin_diff = 0;  ///< (LR - critical) accepted - this one
+};
+
+/// An accepted term that is not named: its rivals fit as well.
+struct Undecided
+{
+  std::string used;            ///< the term the fitted model carries
+  std::vector<Rival> rivals;   ///< the candidates it cannot be told from
+};
+
 struct Round
 {
   FitState before;
@@ -142,6 +162,7 @@ struct Round
   double critical_used = 0;           ///< critical + the tested candidate's mesh allowance
   bool accepted = false;
   std::vector<Evidence> evidence;     ///< every refitted candidate, in refit order
+  std::vector<Rival> rivals;          ///< accepted: other candidates within the separation level
 };
 
 struct Diagnosis
@@ -154,6 +175,7 @@ struct Diagnosis
   /// posture, on the diagnosis mesh (rank 0).
   std::vector<nlohmann::json> surfaces;
   std::vector<std::string> discovered;
+  std::vector<Undecided> undecided;   ///< terms in the fit that the data cannot name
   std::string verdict;                ///< plain words
   bool fit_only = false;              ///< no candidate was tested (DiagnoseOptions::discover)
   double noise_sigma = 0;

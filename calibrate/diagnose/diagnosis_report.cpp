@@ -95,6 +95,10 @@ std::string candidates_text(const Round& r, const Recording& rec)
                      "allowance {:.1f}): {}\n",
                      r.lr, r.critical_used, r.critical, r.critical_used - r.critical,
                      r.accepted ? "ACCEPTED" : "rejected");
+    for (const auto& x : r.rivals)
+      s += fmt::format("  SEPARATION: {} fits about as well as {}: margin difference {:.1f}, Vuong "
+                       "z = {:.2f}, below the separation level; {} is named only if {} is found too\n",
+                       x.candidate, r.tested, x.margin_diff, x.z, r.tested, x.candidate);
     if (r.accepted)
     {
       s += "  FIT BEFORE -> AFTER:\n";
@@ -124,6 +128,23 @@ std::string refused_text(const Diagnosis& d)
                          e.lr, e.critical, e.failed.back());
   return t;
 }
+
+/// The terms the fit carries but the data cannot name (separation.hpp).
+std::string undecided_text(const Diagnosis& d)
+{
+  std::string t;
+  for (const auto& u : d.undecided)
+  {
+    std::string rivals;
+    for (const auto& x : u.rivals)
+      rivals += fmt::format("{}{} (z = {:.2f})", rivals.empty() ? "" : ", ", x.candidate, x.z);
+    t += fmt::format(" The data need a term but cannot tell {} from {}: the missing physics lies "
+                     "between these forms and neither is named (case.diagnosed.toml carries {}, "
+                     "the larger margin, to reproduce the shape).",
+                     u.used, rivals, u.used);
+  }
+  return t;
+}
 } // namespace
 
 std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
@@ -150,6 +171,9 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
                        first.gof_p > alpha ? "at the noise level"
                                            : "systematic misfit; `breastsim diagnose` looks for "
                                              "the missing physics");
+  if (d.discovered.empty() && !d.undecided.empty())
+    return fmt::format("No term is named. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm).{}{}",
+                       rms_all(first), rms_all(last), noise_mm, undecided_text(d), refused_text(d));
   if (d.discovered.empty())
   {
     if (first.gof_p > alpha)
@@ -182,8 +206,9 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
             : fmt::format("the remaining residual is still above the noise level (chi2/dof = {:.3f}, "
                           "p = {:.2g}): more is missing than the library explains.",
                           last.chi2 / last.dof, last.gof_p);
-  return fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm); {}{}",
-                     what, rms_all(first), rms_all(last), noise_mm, rest, refused_text(d));
+  return fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm); {}{}{}",
+                     what, rms_all(first), rms_all(last), noise_mm, rest, undecided_text(d),
+                     refused_text(d));
 }
 
 nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
@@ -198,6 +223,14 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
                                 {"sigma_eff_mm", 1e3 * d.sigma_eff[p]}});
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
+  j["undecided"] = nlohmann::json::array();
+  for (const auto& u : d.undecided)
+  {
+    nlohmann::json rivals = nlohmann::json::array();
+    for (const auto& x : u.rivals)
+      rivals.push_back({{"candidate", x.candidate}, {"z", x.z}, {"margin_difference", x.margin_diff}});
+    j["undecided"].push_back({{"used", u.used}, {"rivals", rivals}});
+  }
   j["diagnosis_mesh"] = {{"order", d.order}, {"mesh_size_m", d.mesh_size}, {"mesh_ratio", d.mesh_ratio}};
   j["rounds"] = nlohmann::json::array();
   for (const auto& r : d.rounds)
@@ -235,6 +268,9 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
       q["evidence"] = nlohmann::json::array();
       for (const auto& e : r.evidence)
         q["evidence"].push_back(to_json(e));
+      q["rivals"] = nlohmann::json::array();
+      for (const auto& x : r.rivals)
+        q["rivals"].push_back({{"candidate", x.candidate}, {"z", x.z}, {"margin_difference", x.margin_diff}});
     }
     j["rounds"].push_back(q);
   }

@@ -63,6 +63,9 @@ Command add_diagnose_command(CLI::App& root)
                   "model before it (0: off)")->capture_default_str();
   app->add_option("--min-misfit-share-later", o->d.min_misfit_share_later,
                   "the same for a term tested after another was found (0: off)")->capture_default_str();
+  app->add_option("--min-separation-z", o->d.min_separation_z,
+                  "an accepted term is named only if it beats every other candidate that holds "
+                  "the rules by this z (Vuong's test on the margins; 0: off)")->capture_default_str();
   app->add_option("--refinement-order", o->d.refinement_order,
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();
