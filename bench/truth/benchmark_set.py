@@ -45,6 +45,11 @@ def _pattern(effect, shape_seed, shape_index):
     return EFFECTS[effect].draw_pattern(rng)
 
 
+def upright_postures():
+    """The set without a reclined posture, as recording postures."""
+    return [{"name": n, "theta_deg": t} for n, t in UPRIGHT_SET]
+
+
 def _common(index):
     """Material and postures cycled over the set (every lambda/mu occurs)."""
     ratio = LAMBDA_OVER_MU[index % len(LAMBDA_OVER_MU)]

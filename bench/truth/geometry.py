@@ -63,10 +63,45 @@ def _classify_surfaces(R, H, tol):
     return groups
 
 
-def build_half_cap(R, H, mesh_size, order=2, comm=MPI.COMM_WORLD):
+def _rim_curves(R, tol):
+    """Curves of the base rim: y = 0 and x^2 + z^2 = R^2 at their midpoint."""
+    rim = []
+    for _, tag in gmsh.model.getEntities(1):
+        lo, hi = gmsh.model.getParametrizationBounds(1, tag)
+        x, y, z = gmsh.model.getValue(1, tag, [0.5 * (lo[0] + hi[0])])
+        if abs(y) < tol and abs(np.hypot(x, z) - R) < tol:
+            rim.append(tag)
+    if not rim:
+        raise RuntimeError("geometry: no curve classified as the base rim")
+    return rim
+
+
+def _grade_to_rim(R, mesh_size, rim_size):
+    """Element size rim_size within rim_size of the base rim, growing
+    linearly with the distance d to mesh_size at d = 3 mesh_size: the fixed
+    base meets the free skin at the rim, where the displacement gradient is
+    singular and a uniform mesh's error is largest."""
+    dist = gmsh.model.mesh.field.add("Distance")
+    gmsh.model.mesh.field.setNumbers(dist, "CurvesList", _rim_curves(R, 1e-6 * R))
+    gmsh.model.mesh.field.setNumber(dist, "NumPointsPerCurve", 400)
+    grade = gmsh.model.mesh.field.add("Threshold")
+    gmsh.model.mesh.field.setNumber(grade, "InField", dist)
+    gmsh.model.mesh.field.setNumber(grade, "SizeMin", rim_size)
+    gmsh.model.mesh.field.setNumber(grade, "SizeMax", mesh_size)
+    gmsh.model.mesh.field.setNumber(grade, "DistMin", rim_size)
+    gmsh.model.mesh.field.setNumber(grade, "DistMax", 3 * mesh_size)
+    gmsh.model.mesh.field.setAsBackgroundMesh(grade)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+
+
+def build_half_cap(R, H, mesh_size, order=2, comm=MPI.COMM_WORLD, rim_size=None):
     """Mesh the half cap with gmsh (order-`order` tetrahedra, curved on the
-    sphere) and return (mesh, facet_tags)."""
+    sphere) and return (mesh, facet_tags); with `rim_size` the elements are
+    graded from rim_size at the base rim to mesh_size."""
     check_dimensions(R, H, mesh_size)
+    if rim_size is not None and not (mesh_size / 10 <= rim_size <= mesh_size):
+        raise ValueError(f"geometry: rim_size = {rim_size} m must lie in "
+                         f"[mesh_size/10, mesh_size] = [{mesh_size / 10}, {mesh_size}] m")
     Rs = sphere_radius(R, H)
     gmsh.initialize()
     try:
@@ -82,7 +117,9 @@ def build_half_cap(R, H, mesh_size, order=2, comm=MPI.COMM_WORLD):
         for name, tags in groups.items():
             gmsh.model.addPhysicalGroup(2, tags, TAGS[name])
         gmsh.option.setNumber("Mesh.MeshSizeMax", mesh_size)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.5 * mesh_size)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.5 * (rim_size or mesh_size))
+        if rim_size is not None:
+            _grade_to_rim(R, mesh_size, rim_size)
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
         gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay
         gmsh.option.setNumber("Mesh.Optimize", 1)

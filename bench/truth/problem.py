@@ -8,9 +8,14 @@ problem serves every recording with the same effects.
 from dolfinx import fem
 
 from forms_truth import EFFECTS, gravity, tissue
+from forms_truth.candidate_forms import CANDIDATE_FORMS
 from forms_truth.context import Context
 from geometry import TAGS
 from solver import TruthModel
+
+
+# Terms by name: the hidden effects, and the candidates' forms (pseudo_true.py).
+MODULES = {**EFFECTS, **{m.NAME: m for m in CANDIDATE_FORMS.values()}}
 
 
 class Problem:
@@ -21,8 +26,8 @@ class Problem:
         self.gravity = gravity.Term(ctx)
         self.effects = {}
         for name, pattern in effects:
-            self.effects[name] = EFFECTS[name].Term(ctx, pattern, self.tissue)
-        fixed_base = not any(EFFECTS[n].REPLACES_FIXED_BASE for n in self.effects)
+            self.effects[name] = MODULES[name].Term(ctx, pattern, self.tissue)
+        fixed_base = not any(MODULES[n].REPLACES_FIXED_BASE for n in self.effects)
         self.model = TruthModel(ctx, self.tissue, self.gravity, list(self.effects.values()),
                                 fixed_base)
 
@@ -44,7 +49,7 @@ class Problem:
 
 
 def problem_key(degree, effects):
-    return (degree,) + tuple(sorted((n, EFFECTS[n].structure(p)) for n, p in effects))
+    return (degree,) + tuple(sorted((n, MODULES[n].structure(p)) for n, p in effects))
 
 
 class Problems:

@@ -2,7 +2,8 @@
 against the effect-free truth is a target T (mm).
 
 The peak shape change of a set of solves u against the effect-free solves
-u_0 is max over postures and skin nodes of |(u - u_0) . n_0| (surface.Skin).
+u_0 is max over postures and skin nodes of |(u - u_0) . n_0| (surface.Skin),
+over the skin at least surface.FOLD_BAND above the base.
 It grows roughly as a power of s, p(s) ~ a s^k, so the update is a secant
 step in log-log coordinates,
     s_new = s (T / p(s))^(1 / k),   k = ln(p_2/p_1) / ln(s_2/s_1)  (k = 1 first),
@@ -14,9 +15,12 @@ TOLERANCE = 0.12     # relative: accept |p / T - 1| <= 12 %
 
 
 def peak_change(skin, u_ref, u):
-    """(max over postures, per-posture max, per-posture rms) in mm."""
+    """(max over postures, per-posture max, per-posture rms, max over postures
+    including the fold band) in mm; the peaks exclude the fold band
+    (surface.FOLD_BAND)."""
     per = [skin.shape_change(a, b) for a, b in zip(u_ref, u)]
-    return max(p[0] for p in per) * 1e3, [p[0] * 1e3 for p in per], [p[1] * 1e3 for p in per]
+    return (max(p[0] for p in per) * 1e3, [p[0] * 1e3 for p in per], [p[1] * 1e3 for p in per],
+            max(p[2] for p in per) * 1e3)
 
 
 def log_slope(history):

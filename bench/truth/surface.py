@@ -14,6 +14,14 @@ import numpy as np
 
 from geometry import TAGS
 
+# Height above the base [m] below which a shape change does not count in the
+# peak: the skin there meets the fixed base at the inframammary fold, where
+# neither model has contact, the gravity-loaded lower pole creases and the
+# truth's displacement does not converge under refinement (a weak base bed:
+# peak 1.02 mm on the uniform 6 mm mesh, 1.40 mm graded to 3 mm at the rim;
+# the peak 10 mm or more above the base 0.51 and 0.54 mm).
+FOLD_BAND = 0.010
+
 TET_EDGES = [(2, 3), (1, 3), (1, 2), (0, 3), (0, 2), (0, 1)]
 # the 6 nodes of each triangle: vertices (natural ordering), then the
 # reference coordinates of its nodes
@@ -120,14 +128,21 @@ class Skin:
             out.extend(pts[keep])
         return np.array(out[:n])
 
-    def shape_change(self, u_ref, u_other):
-        """Normal shape change of `u_other` against `u_ref` at every skin node:
-        |(u_other - u_ref) . n_ref|, n_ref the unit normal of the deformed
-        reference skin at the node. Returns (max, rms) in metres."""
-        x = self.nodes(u_ref)
-        _, ts, tt = self._tangents(x, TRI_NODES_REF)
+    def normal_difference(self, u_ref, u_other):
+        """(u_other - u_ref) . n_ref at the 6 nodes of every skin triangle,
+        (n, 6), n_ref the unit normal of the deformed reference skin."""
+        _, ts, tt = self._tangents(self.nodes(u_ref), TRI_NODES_REF)
         n = np.cross(ts, tt)
         n /= np.linalg.norm(n, axis=2, keepdims=True)
         du = (u_other - u_ref).reshape(-1, 3)[self.tris]
-        d = np.abs((du * n).sum(axis=2))
-        return float(d.max()), float(np.sqrt((d ** 2).mean()))
+        return (du * n).sum(axis=2)
+
+    def shape_change(self, u_ref, u_other):
+        """Normal shape change of `u_other` against `u_ref` at every skin node:
+        d = |(u_other - u_ref) . n_ref|, n_ref the unit normal of the deformed
+        reference skin at the node. Returns (max over the nodes at least
+        FOLD_BAND above the base, rms over all nodes, max over all nodes) in
+        metres."""
+        d = np.abs(self.normal_difference(u_ref, u_other))
+        above_fold = self.X[self.tris][:, :, 1] >= FOLD_BAND
+        return float(d[above_fold].max()), float(np.sqrt((d ** 2).mean())), float(d.max())
