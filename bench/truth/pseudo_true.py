@@ -21,6 +21,7 @@ forms agree; near 1: the candidate cannot reproduce the effect).
     nice -n 19 python3 bench/truth/pseudo_true.py              # main set, missing entries
     nice -n 19 python3 bench/truth/pseudo_true.py --set validation
     python3 bench/truth/pseudo_true.py --only base_springs_weak_1 --redo
+    python3 bench/truth/pseudo_true.py --only A,B --out /tmp/part.json   # a second process: its own file
 
 Writes pseudo_true.json beside the manifest, one entry per recording as
 soon as it is done (resumable).
@@ -121,6 +122,8 @@ def parse_args():
     ap.add_argument("--set", dest="which", choices=["main", "validation"], default="main")
     ap.add_argument("--only", default="", help="recording names (comma-separated)")
     ap.add_argument("--redo", action="store_true", help="recompute existing entries")
+    ap.add_argument("--out", default=None, help="output file (default: pseudo_true.json beside the manifest; "
+                                                "one process per file)")
     return ap.parse_args()
 
 
@@ -130,7 +133,7 @@ def main():
     manifest = read_manifest(folder / "manifest.json")
     if manifest is None:
         sys.exit(f"pseudo_true.py: no manifest in {folder}")
-    out_path = folder / "pseudo_true.json"
+    out_path = Path(a.out) if a.out else folder / "pseudo_true.json"
     out = read_manifest(out_path) or {"format": 1, "generator": "bench/truth/pseudo_true.py",
                                       "definition": DEFINITION, "recordings": {}}
     only = [n for n in a.only.split(",") if n]
