@@ -82,7 +82,7 @@ class Fitter:
         target = entry["effects"][effect_index]
         form = CANDIDATE_FORMS[target["candidate"]]
         others = [h for k, h in enumerate(hidden) if k != effect_index]
-        u_none = self.solve(entry, others, strengths, u_truth) if others else self.solve(entry, [], {}, u_truth)
+        u_none = self.solve(entry, others, strengths, u_truth)     # the truth without effect k
         effects = others + [(form.NAME, {})]
 
         def evaluate(y, start):
