@@ -74,11 +74,17 @@ class Fitter:
             parts.append((w * self.skin.normal_difference(ut, ui)).ravel())
         return np.concatenate(parts)
 
-    def fit(self, entry, effect_index):
-        """q* of the candidate replacing hidden effect `effect_index`."""
+    def truth(self, entry):
+        """The recording's truth solves, one per posture."""
+        hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
+        return self.solve(entry, hidden, {e["model"]: e["strength"]["value"] for e in entry["effects"]})
+
+    def fit(self, entry, effect_index, u_truth=None):
+        """q* of the candidate replacing hidden effect `effect_index`
+        (`u_truth`: the truth solves, computed here if not given)."""
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         strengths = {e["model"]: e["strength"]["value"] for e in entry["effects"]}
-        u_truth = self.solve(entry, hidden, strengths)
+        u_truth = self.truth(entry) if u_truth is None else u_truth
         target = entry["effects"][effect_index]
         form = CANDIDATE_FORMS[target["candidate"]]
         others = [h for k, h in enumerate(hidden) if k != effect_index]
@@ -146,10 +152,10 @@ def main():
         if entry["truth_mesh"]["size_m"] != 0.006 or entry["truth_mesh"].get("rim_size_m"):
             sys.exit(f"pseudo_true.py: {name}: truth mesh {entry['truth_mesh']} is not the uniform 6 mm mesh")
         t0 = time.perf_counter()
-        res = {}
+        res, u_truth = {}, fitter.truth(entry)
         for k, e in enumerate(entry["effects"]):
             if e["candidate"] in CANDIDATE_FORMS:
-                res[e["candidate"]] = fitter.fit(entry, k)
+                res[e["candidate"]] = fitter.fit(entry, k, u_truth)
         out["recordings"][name] = {"seconds": round(time.perf_counter() - t0, 1), "candidates": res}
         out["recordings"] = dict(sorted(out["recordings"].items()))
         write_json_atomic(out_path, out)
