@@ -1,6 +1,7 @@
 // The evidence rules of the diagnosis (calibrate/diagnose/evidence.hpp) on
 // hand-made fits whose answers are known in closed form.
 #include "evidence.hpp"
+#include "model_form.hpp"
 #include "separation.hpp"
 #include <cmath>
 #include <gtest/gtest.h>

@@ -11,6 +11,7 @@
 #include "geometry_options.hpp"
 #include "log.hpp"
 #include "mesh_error.hpp"
+#include "model_form.hpp"
 #include "residual_regions.hpp"
 #include "separation.hpp"
 #include "timer.hpp"
@@ -56,6 +57,9 @@ void check_options(const DiagnoseOptions& o)
   if (!(o.min_separation_z >= 0 && o.min_separation_z <= 10))
     throw InputError(fmt::format("--min-separation-z = {} is out of range: allowed [0, 10] (0: off)",
                                  o.min_separation_z));
+  if (o.jackknife_patches < 0 || o.jackknife_patches > 10)
+    throw InputError(fmt::format("--jackknife-patches = {} is out of range: allowed [0, 10] (0: off)",
+                                 o.jackknife_patches));
   if (o.max_rounds < 1 || o.max_rounds > 10)
     throw InputError(fmt::format("--max-rounds = {} is out of range: allowed [1, 10]", o.max_rounds));
 }
@@ -361,17 +365,19 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
     if (!discovery_round(s, d))
       break; // step 8: nothing (more) is significant
   d.final_fit = s.state;
+  d.se_statistical = s.state.uncertainty.se_log;
   // Step 9: the numerical uncertainty of the found values.
   if (s.fine_ev && (s.found > 0 || d.fit_only) && !s.frees.empty())
   {
     const FitState f = s.fine_state ? *s.fine_state
                                     : fit(*s.fine_ev, finer(s.current, o.mesh_ratio), s.frees,
                                           log_values(s.state), s.lsq, "refit on the finer mesh");
+    d.se_statistical = f.uncertainty.se_log;
     d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.se_numerical);
   }
   if (s.found > 0)
   {
-    d.se_model_form = posture_jackknife_se(d.final_fit, rec);
+    estimate_model_form(d.final_fit, rec, o.jackknife_patches, d);
     widen_by_model_form(d.final_fit, d.se_model_form);
   }
   d.surfaces = s.ev.surfaces(d.final_fit.config);

@@ -67,6 +67,10 @@ struct DiagnoseOptions
   /// rules by this many standard deviations of Vuong's test (separation.hpp;
   /// 0: off); otherwise the hidden physics lies between the candidates.
   double min_separation_z = 1.96;
+  /// Model-form uncertainty of the found values (model_form.hpp): the patch
+  /// jackknife splits each posture's points into b x b patches (0: only
+  /// the posture jackknife).
+  int jackknife_patches = 3;
   /// MPI ranks per forward solve: the Jacobian columns and candidate probes
   /// are solved by groups of this many ranks side by side (0: all ranks).
   int ranks_per_case = 0;
@@ -170,7 +174,10 @@ struct Diagnosis
   std::vector<Round> rounds;
   FitState final_fit;                 ///< after a discovery: refitted on the finer mesh
   std::vector<double> se_numerical;   ///< numerical part of the SE of ln p (final_fit)
-  std::vector<double> se_model_form;  ///< model-form part of the SE of ln p (posture jackknife)
+  std::vector<double> se_statistical; ///< statistical SE of ln p of the final fit (noise, chi2/dof)
+  std::vector<double> se_model_form;  ///< model-form part of the SE of ln p (model_form.hpp)
+  std::vector<double> se_posture_jackknife; ///< its posture jackknife
+  std::vector<double> se_patch_jackknife;   ///< its patch jackknife
   /// Skin surface documents (surface_export.hpp) of the final model per
   /// posture, on the diagnosis mesh (rank 0).
   std::vector<nlohmann::json> surfaces;

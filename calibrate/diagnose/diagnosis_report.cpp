@@ -12,6 +12,18 @@ namespace
 {
 nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
 
+/// Rivals as a JSON array (diagnosis.json: undecided[].rivals, rounds[].rivals).
+nlohmann::json rivals_json(const std::vector<Rival>& rivals)
+{
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& x : rivals)
+    a.push_back({{"candidate", x.candidate}, {"z", x.z}, {"margin_difference", x.margin_diff}});
+  return a;
+}
+
+/// v[i], 0 where v has no entry i.
+double at(const std::vector<double>& v, std::size_t i) { return i < v.size() ? v[i] : 0.0; }
+
 nlohmann::json to_json(const FitState& s, const Recording& rec)
 {
   nlohmann::json j;
@@ -226,10 +238,7 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   j["undecided"] = nlohmann::json::array();
   for (const auto& u : d.undecided)
   {
-    nlohmann::json rivals = nlohmann::json::array();
-    for (const auto& x : u.rivals)
-      rivals.push_back({{"candidate", x.candidate}, {"z", x.z}, {"margin_difference", x.margin_diff}});
-    j["undecided"].push_back({{"used", u.used}, {"rivals", rivals}});
+    j["undecided"].push_back({{"used", u.used}, {"rivals", rivals_json(u.rivals)}});
   }
   j["diagnosis_mesh"] = {{"order", d.order}, {"mesh_size_m", d.mesh_size}, {"mesh_ratio", d.mesh_ratio}};
   j["rounds"] = nlohmann::json::array();
@@ -268,15 +277,16 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
       q["evidence"] = nlohmann::json::array();
       for (const auto& e : r.evidence)
         q["evidence"].push_back(to_json(e));
-      q["rivals"] = nlohmann::json::array();
-      for (const auto& x : r.rivals)
-        q["rivals"].push_back({{"candidate", x.candidate}, {"z", x.z}, {"margin_difference", x.margin_diff}});
+      q["rivals"] = rivals_json(r.rivals);
     }
     j["rounds"].push_back(q);
   }
   j["final"] = to_json(d.final_fit, rec);
   j["se_log_numerical"] = d.se_numerical;
+  j["se_log_statistical"] = d.se_statistical;
   j["se_log_model_form"] = d.se_model_form;
+  j["se_log_posture_jackknife"] = d.se_posture_jackknife;
+  j["se_log_patch_jackknife"] = d.se_patch_jackknife;
   j["posture_solves"] = d.posture_solves;
   j["wall_time_s"] = d.seconds;
   return j;
@@ -330,10 +340,12 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
     s += fmt::format("\nFinal fit on the finer check mesh (numerical{} uncertainty included): {}\n",
                      d.se_model_form.empty() ? "" : " and model-form", fit_line(d.final_fit));
   for (std::size_t i = 0; i < d.se_model_form.size() && i < d.final_fit.names.size(); ++i)
-    s += fmt::format("  {}: SE of ln p numerical {:.3f}, model-form (posture jackknife) {:.3f}, "
-                     "total {:.3f}\n",
-                     d.final_fit.names[i], i < d.se_numerical.size() ? d.se_numerical[i] : 0.0,
-                     d.se_model_form[i], d.final_fit.uncertainty.se_log[i]);
+    s += fmt::format("  {}: SE of ln p statistical {:.3f}, numerical {:.3f}, model-form {:.3f} (the "
+                     "larger of the posture jackknife {:.3f} and the patch jackknife {:.3f}), total "
+                     "{:.3f}\n",
+                     d.final_fit.names[i], at(d.se_statistical, i), at(d.se_numerical, i),
+                     d.se_model_form[i], at(d.se_posture_jackknife, i), at(d.se_patch_jackknife, i),
+                     d.final_fit.uncertainty.se_log[i]);
   s += "\n" + d.verdict + "\n";
   s += fmt::format("({} posture solves, {:.1f} s)\n", d.posture_solves, d.seconds);
   return s;

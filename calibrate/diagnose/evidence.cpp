@@ -1,5 +1,5 @@
 #include "evidence.hpp"
-#include "least_squares.hpp"
+#include "linearised_refit.hpp"
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -7,60 +7,6 @@
 
 namespace breastsim::calibration
 {
-namespace
-{
-/// The residual rows of each posture: its points, then its landmark rows.
-std::vector<std::vector<std::size_t>> rows_by_posture(const FitState& s, const Recording& rec)
-{
-  std::vector<std::vector<std::size_t>> rows(s.distances.size());
-  std::size_t j = 0;
-  for (std::size_t p = 0; p < s.distances.size(); ++p)
-    for (std::size_t i = 0; i < s.distances[p].size(); ++i)
-      rows[p].push_back(j++);
-  for (std::size_t p = 0; p < rec.postures.size() && p < rows.size(); ++p)
-    if (rec.postures[p].nipple)
-      for (int k = 0; k < 3; ++k)
-        rows[p].push_back(j++);
-  return rows;
-}
-
-/// The Gauss-Newton step in ln p fitted on the rows not in `held`:
-/// delta = -(J_-k^T J_-k)^-1 J_-k^T r_-k (zero if singular).
-std::vector<double> step_without(const FitState& s, const std::vector<char>& held)
-{
-  const std::size_t n = s.J.empty() ? 0 : s.J[0].size();
-  Matrix A(n, std::vector<double>(n, 0.0));
-  std::vector<double> b(n, 0.0), delta(n, 0.0);
-  for (std::size_t i = 0; i < s.r.size(); ++i)
-    if (!held[i])
-      for (std::size_t p = 0; p < n; ++p)
-      {
-        b[p] -= s.J[i][p] * s.r[i];
-        for (std::size_t q = 0; q < n; ++q)
-          A[p][q] += s.J[i][p] * s.J[i][q];
-      }
-  if (n > 0 && !solve_dense(A, b, delta))
-    delta.assign(n, 0.0);
-  return delta;
-}
-
-/// |r_k + J_k delta|^2 over the rows marked in `held`.
-double predicted_chi2(const FitState& s, const std::vector<char>& held, const std::vector<double>& delta)
-{
-  const std::size_t n = delta.size();
-  double chi2 = 0;
-  for (std::size_t i = 0; i < s.r.size(); ++i)
-    if (held[i])
-    {
-      double ri = s.r[i];
-      for (std::size_t p = 0; p < n; ++p)
-        ri += s.J[i][p] * delta[p];
-      chi2 += ri * ri;
-    }
-  return chi2;
-}
-} // namespace
-
 void effect_size(const FitState& without, const FitState& with, Evidence& e)
 {
   double ss_all = 0;
@@ -96,58 +42,15 @@ double effect_at_interval_edge(const FitState& with, const std::string& paramete
   return std::isfinite(lo) ? effect * std::clamp(lo / with.values[i], 0.0, 1.0) : 0.0;
 }
 
-namespace
-{
-/// Rows of posture k marked, for each posture.
-std::vector<std::vector<char>> held_masks(const FitState& s, const Recording& rec)
-{
-  std::vector<std::vector<char>> masks;
-  for (const auto& rows : rows_by_posture(s, rec))
-  {
-    masks.emplace_back(s.r.size(), 0);
-    for (std::size_t i : rows)
-      if (i < s.r.size())
-        masks.back()[i] = 1;
-  }
-  return masks;
-}
-} // namespace
-
 std::vector<double> held_out_chi2(const FitState& s, const Recording& rec)
 {
   std::vector<double> out;
-  for (const auto& held : held_masks(s, rec))
+  for (const auto& rows : rows_by_posture(s, rec))
+  {
+    const auto held = mask_of(s, rows);
     out.push_back(predicted_chi2(s, held, step_without(s, held)));
+  }
   return out;
-}
-
-std::vector<double> posture_jackknife_se(const FitState& s, const Recording& rec)
-{
-  const auto masks = held_masks(s, rec);
-  const std::size_t n = s.values.size(), k = masks.size();
-  std::vector<std::vector<double>> steps;
-  for (const auto& held : masks)
-    steps.push_back(step_without(s, held));
-  std::vector<double> se(n, 0.0);
-  for (std::size_t p = 0; p < n && k > 1; ++p)
-  {
-    double mean = 0, ss = 0;
-    for (const auto& d : steps)
-      mean += d[p] / static_cast<double>(k);
-    for (const auto& d : steps)
-      ss += (d[p] - mean) * (d[p] - mean);
-    se[p] = std::sqrt(ss * static_cast<double>(k - 1) / static_cast<double>(k));
-  }
-  return se;
-}
-
-void widen_by_model_form(FitState& s, const std::vector<double>& se_model_form)
-{
-  auto& u = s.uncertainty;
-  for (std::size_t i = 0; i < s.values.size() && i < u.se_log.size() && i < se_model_form.size(); ++i)
-  {
-    widen_interval(u, i, s.values[i], se_model_form[i]);
-  }
 }
 
 double continuum_lr(double lr_h, double lr_fine, double ratio, double order)

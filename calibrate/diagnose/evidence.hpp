@@ -26,18 +26,6 @@ double effect_at_interval_edge(const FitState& with, const std::string& paramete
 /// (Residual rows: each posture's points, then each landmark's 3 rows.)
 std::vector<double> held_out_chi2(const FitState& s, const Recording& rec);
 
-/// Model-form uncertainty, estimated from the data: the jackknife over the
-/// postures of the linearised leave-one-posture-out estimates of ln p,
-///   se_k^2 = (n - 1)/n sum_k (delta_k - mean delta)^2,
-/// which is of the statistical size when the model fits every posture alike
-/// and grows when the postures ask for different values (a missing or
-/// misshapen term). Per parameter of `s`.
-std::vector<double> posture_jackknife_se(const FitState& s, const Recording& rec);
-
-/// Add `se_model_form` to each parameter's SE of ln p in quadrature and
-/// recompute the 95 % intervals.
-void widen_by_model_form(FitState& s, const std::vector<double>& se_model_form);
-
 /// The likelihood ratio extrapolated to the continuum from the diagnosis mesh
 /// h and the mesh h/r: the square root of the LR (the effect in noise units)
 /// extrapolated as an error of order p,

@@ -66,6 +66,10 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--min-separation-z", o->d.min_separation_z,
                   "an accepted term is named only if it beats every other candidate that holds "
                   "the rules by this z (Vuong's test on the margins; 0: off)")->capture_default_str();
+  app->add_option("--jackknife-patches", o->d.jackknife_patches,
+                  "model-form uncertainty of the found values: the patch jackknife splits each "
+                  "posture's points into N x N patches (0: only the posture jackknife)")
+      ->capture_default_str();
   app->add_option("--refinement-order", o->d.refinement_order,
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();
