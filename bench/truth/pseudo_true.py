@@ -5,20 +5,29 @@ The hidden effects have other forms than breastsim's candidates, so "the
 hidden value" of a candidate parameter needs a definition. The manifest's
 q_equivalent is a linearised or averaged stand-in. The pseudo-true value is
 the one a fit converges to with noise-free data and no discretisation
-difference: for each hidden effect e with a candidate form in the truth code
-(forms_truth/candidate_forms.py: base_springs, gland_core,
-suspensory_ligament), e is replaced by the candidate's form (the other hidden
-effects stay as they are, mu and lambda are the truth's) and its value is
+difference: every hidden effect of a recording with a candidate form in the
+truth code (forms_truth/candidate_forms.py: base_springs, gland_core,
+suspensory_ligament, skin) is replaced by the candidate's form, all of them
+together (the diagnosis fits the candidates of a pair jointly; an effect
+without a form would stay as in the truth; mu and lambda are the truth's),
+and their values are
 
     q* = argmin_q sum_postures int_skin ((u_q - u_truth) . n)^2 dA,
 
-n the unit normal of the truth's deformed skin, both solved on the truth's
-own P2 mesh. Gauss-Newton in ln q with a forward-difference derivative,
-from the manifest's equivalent. Also reported: the share of the effect the
-candidate form leaves unexplained, ||r(q*)|| / ||r(no effect)|| (0: the
-forms agree; near 1: the candidate cannot reproduce the effect).
+q the vector of the replaced effects' parameters, n the unit normal of the
+truth's deformed skin, both solved on the truth's own P2 mesh. Gauss-Newton
+in ln q with a forward-difference Jacobian (one column per parameter), from
+the manifest's equivalents. Also reported: the share of the effects the
+candidates' forms leave unexplained, ||r(q*)|| / ||r(replaced effects
+removed)|| (0: the forms agree; near 1: the candidates cannot reproduce
+them), the same for every candidate of a joint fit ("joint" lists them).
 
-    nice -n 19 python3 bench/truth/pseudo_true.py              # main set, missing entries
+Definition version 2 (this one) differs from version 1 (each effect of a
+pair replaced alone, the other kept) only for recordings with several
+effects: an entry without "definition_version" is kept for a single-effect
+recording and recomputed for a pair.
+
+    nice -n 19 python3 bench/truth/pseudo_true.py              # main set, missing or outdated entries
     nice -n 19 python3 bench/truth/pseudo_true.py --set validation
     python3 bench/truth/pseudo_true.py --only base_springs_weak_1 --redo
     python3 bench/truth/pseudo_true.py --only A,B --out /tmp/part.json   # a second process: its own file
@@ -44,9 +53,11 @@ from problem import Problems  # noqa: E402
 from recording_io import read_manifest, write_json_atomic  # noqa: E402
 from surface import Skin  # noqa: E402
 
-DEFINITION = ("q* = argmin_q sum_postures int_skin ((u_q - u_truth) . n)^2 dA: the hidden effect replaced "
-              "by the candidate's form (forms_truth/candidate_forms.py), the other hidden effects and mu, "
-              "lambda as in the truth, both solved on the truth's P2 mesh; n the truth's deformed skin normal")
+DEFINITION = ("q* = argmin_q sum_postures int_skin ((u_q - u_truth) . n)^2 dA: every hidden effect with a "
+              "candidate form replaced by the candidate's form (forms_truth/candidate_forms.py), their q "
+              "fitted jointly; other hidden effects and mu, lambda as in the truth, both solved on the "
+              "truth's P2 mesh; n the truth's deformed skin normal")
+DEFINITION_VERSION = 2
 STEP = 0.05          # forward-difference step in ln q
 MAX_ITERATIONS = 8
 TOL_LOG = 0.005      # stop when |delta ln q| is below this
@@ -79,48 +90,82 @@ class Fitter:
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         return self.solve(entry, hidden, {e["model"]: e["strength"]["value"] for e in entry["effects"]})
 
-    def fit(self, entry, effect_index, u_truth=None):
-        """q* of the candidate replacing hidden effect `effect_index`
-        (`u_truth`: the truth solves, computed here if not given)."""
+    def fit(self, entry, indices=None, u_truth=None):
+        """{candidate: q* and its figures} of the candidates replacing the
+        hidden effects `indices` jointly (default: every effect with a
+        candidate form); `u_truth`: the truth solves, computed here if not given."""
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         strengths = {e["model"]: e["strength"]["value"] for e in entry["effects"]}
+        indices = replaceable(entry) if indices is None else list(indices)
         u_truth = self.truth(entry) if u_truth is None else u_truth
-        target = entry["effects"][effect_index]
-        form = CANDIDATE_FORMS[target["candidate"]]
-        others = [h for k, h in enumerate(hidden) if k != effect_index]
-        u_none = self.solve(entry, others, strengths, u_truth)     # the truth without effect k
-        effects = others + [(form.NAME, {})]
+        targets = [entry["effects"][k] for k in indices]
+        forms = [CANDIDATE_FORMS[t["candidate"]] for t in targets]
+        others = [h for k, h in enumerate(hidden) if k not in indices]
+        u_none = self.solve(entry, others, strengths, u_truth)     # the truth without the replaced effects
+        effects = others + [(f.NAME, {}) for f in forms]
 
         def evaluate(y, start):
-            u = self.solve(entry, effects, {**strengths, form.NAME: math.exp(y)}, start)
+            u = self.solve(entry, effects, {**strengths, **{f.NAME: math.exp(v) for f, v in zip(forms, y)}},
+                           start)
             return u, self.residual(u_truth, u)
 
-        y = math.log(target["q_equivalent"]["value"])
-        u, r = evaluate(y, u_truth)
-        history = []
-        for _ in range(MAX_ITERATIONS):
-            u_d, r_d = evaluate(y + STEP, u)
-            j = (r_d - r) / STEP
-            dy = -float(j @ r) / float(j @ j)
-            dy = max(-MAX_LOG_STEP, min(MAX_LOG_STEP, dy))
-            history.append([round(math.exp(y), 12), float(np.linalg.norm(r))])
-            u_new, r_new = evaluate(y + dy, u_d)
-            while np.linalg.norm(r_new) > np.linalg.norm(r) and abs(dy) > TOL_LOG:
-                dy *= 0.5                                   # backtrack
-                u_new, r_new = evaluate(y + dy, u)
-            if np.linalg.norm(r_new) <= np.linalg.norm(r):
-                y, u, r = y + dy, u_new, r_new
-            if abs(dy) < TOL_LOG:
-                break
+        y, r, history = gauss_newton(evaluate, np.log([t["q_equivalent"]["value"] for t in targets]), u_truth)
         effect_norm = float(np.linalg.norm(self.residual(u_truth, u_none)))
-        return {"parameter": target["q_equivalent"]["parameter"], "value": math.exp(y),
-                "equivalent": target["q_equivalent"]["value"],
-                "unexplained_share": float(np.linalg.norm(r)) / effect_norm if effect_norm > 0 else None,
-                "effect_rms_mm": 1e3 * effect_norm / math.sqrt(self._area_sum(u_truth)),
-                "history": history}
+        return results(targets, y, history, {
+            "unexplained_share": float(np.linalg.norm(r)) / effect_norm if effect_norm > 0 else None,
+            "effect_rms_mm": 1e3 * effect_norm / math.sqrt(self._area_sum(u_truth))})
 
     def _area_sum(self, u_truth):
         return sum(float(self.skin.areas(ut).sum()) for ut in u_truth)
+
+
+def gauss_newton(evaluate, y, start):
+    """min_y ||r(y)|| from y (evaluate(y, start) -> (solves, r)): Gauss-Newton
+    J dy = -r in least squares, J by forward differences (column i:
+    (r(y + STEP e_i) - r(y)) / STEP), dy scaled to |dy_i| <= MAX_LOG_STEP and
+    halved while ||r|| does not decrease; history [q_1, ..., ||r||] per step."""
+    u, r = evaluate(y, start)
+    history = []
+    for _ in range(MAX_ITERATIONS):
+        columns, u_d = [], u
+        for i in range(len(y)):
+            u_d, r_d = evaluate(y + STEP * np.eye(len(y))[i], u)
+            columns.append((r_d - r) / STEP)
+        dy = -np.linalg.lstsq(np.stack(columns, axis=1), r, rcond=None)[0]
+        dy *= min(1.0, MAX_LOG_STEP / max(np.abs(dy).max(), 1e-300))
+        history.append([round(math.exp(v), 12) for v in y] + [float(np.linalg.norm(r))])
+        u_new, r_new = evaluate(y + dy, u_d)
+        while np.linalg.norm(r_new) > np.linalg.norm(r) and np.abs(dy).max() > TOL_LOG:
+            dy *= 0.5                                   # backtrack
+            u_new, r_new = evaluate(y + dy, u)
+        if np.linalg.norm(r_new) <= np.linalg.norm(r):
+            y, u, r = y + dy, u_new, r_new
+        if np.abs(dy).max() < TOL_LOG:
+            break
+    return y, r, history
+
+
+def results(targets, y, history, common):
+    """Per candidate: its q*, its equivalent, the figures `common` to the fit
+    and its column of the history ([q, ||r||] per step); "joint" for a pair."""
+    if len(targets) > 1:
+        common = {**common, "joint": [t["candidate"] for t in targets]}
+    return {t["candidate"]: {"parameter": t["q_equivalent"]["parameter"], "value": math.exp(y[i]),
+                             "equivalent": t["q_equivalent"]["value"], **common,
+                             "history": [[h[i], h[-1]] for h in history]}
+            for i, t in enumerate(targets)}
+
+
+def replaceable(entry):
+    """Indices of the hidden effects that have a candidate form."""
+    return [k for k, e in enumerate(entry["effects"]) if e["candidate"] in CANDIDATE_FORMS]
+
+
+def is_current(stored, entry):
+    """A stored entry holds under DEFINITION: computed by it, or by version 1
+    (no field) for a single-effect recording, where the two coincide."""
+    version = stored.get("definition_version", 1)
+    return version == DEFINITION_VERSION or (version == 1 and len(entry["effects"]) == 1)
 
 
 def parse_args():
@@ -143,20 +188,19 @@ def main():
     out = read_manifest(out_path) or {"format": 1, "generator": "bench/truth/pseudo_true.py",
                                       "definition": DEFINITION, "recordings": {}}
     only = [n for n in a.only.split(",") if n]
+    out["definition"] = DEFINITION
     todo = [(n, e) for n, e in sorted(manifest["recordings"].items())
-            if e["effects"] and (not only or n in only) and (a.redo or n not in out["recordings"])
-            and any(x["candidate"] in CANDIDATE_FORMS for x in e["effects"])]
+            if replaceable(e) and (not only or n in only)
+            and (a.redo or n not in out["recordings"] or not is_current(out["recordings"][n], e))]
     print(f"{len(todo)} recording(s)", flush=True)
     fitter = Fitter(0.006) if todo else None
     for name, entry in todo:
         if entry["truth_mesh"]["size_m"] != 0.006 or entry["truth_mesh"].get("rim_size_m"):
             sys.exit(f"pseudo_true.py: {name}: truth mesh {entry['truth_mesh']} is not the uniform 6 mm mesh")
         t0 = time.perf_counter()
-        res, u_truth = {}, fitter.truth(entry)
-        for k, e in enumerate(entry["effects"]):
-            if e["candidate"] in CANDIDATE_FORMS:
-                res[e["candidate"]] = fitter.fit(entry, k, u_truth)
-        out["recordings"][name] = {"seconds": round(time.perf_counter() - t0, 1), "candidates": res}
+        res = fitter.fit(entry)
+        out["recordings"][name] = {"seconds": round(time.perf_counter() - t0, 1),
+                                   "definition_version": DEFINITION_VERSION, "candidates": res}
         out["recordings"] = dict(sorted(out["recordings"].items()))
         write_json_atomic(out_path, out)
         print(name, {c: (f"{v['value']:.4g} (equivalent {v['equivalent']:.4g}, "

@@ -8,10 +8,18 @@ candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
                                    A_skin(Z > 0) = pi Rs H / 2 (half of the half cap);
    - sharp core, u = e X (F = (1 + e) I): E = q W((1 + e) I) V_core,
      V_core the half cap's volume inside x^2 + z^2 < r_g^2 (gland_ellipsoid.core_volume);
+   - tension-field skin (mu_s = lambda_s = q), E = t_s W A with W uniform:
+     u = e X on the skin (equibiaxial, l1 = l2 = 1 + e, taut), A the skin's
+     area; its density on the flat base (N = -e_y) under u = (F - I) X, F a
+     stretch diag(l1, 1, l2) in axes turned 30 deg about y: taut (l2 above
+     the natural width n(l1)), wrinkled (W_s(l1, n(l1))), slack (l1 <= 1: 0),
+     A the base's area;
 2. the pseudo-true value of a truth inside the candidate's family is its
    own value: a smooth base bed with a flat shape (b = 0) is the uniform bed,
    so q* must equal its compliance, with nothing left unexplained, from a
-   start a factor 2.5 away.
+   start a factor 2.5 away; and jointly, the same bed with the skin
+   candidate's own form: both values back from starts a factor 2.5 and 0.5
+   away.
 
 Run: /usr/bin/python3 tests/truth/test_candidate_forms.py SOURCE_DIR
 """
@@ -24,7 +32,7 @@ sys.path.insert(0, str(Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 import numpy as np  # noqa: E402
 
 from forms_truth import tissue  # noqa: E402
-from forms_truth.candidate_forms import CANDIDATE_FORMS, R_G  # noqa: E402
+from forms_truth.candidate_forms import CANDIDATE_FORMS, R_G, T_S  # noqa: E402
 from forms_truth.gland_ellipsoid import core_volume  # noqa: E402
 from pseudo_true import Fitter  # noqa: E402
 
@@ -69,6 +77,48 @@ def closed_forms(fitter):
     check("sharp core, uniform dilation", energy(ctx, core, lambda x: e * x), 0.8 * w * core_volume(R, H, R_G), 0.02)
 
 
+def membrane_w(q, l1, l2):
+    """W_s = q/2 (l1^2 + l2^2 - 2 - 2 ln(l1 l2)) + q/2 (l1 l2 - 1)^2 (mu_s = lambda_s = q)."""
+    return q / 2 * (l1 ** 2 + l2 ** 2 - 2 - 2 * math.log(l1 * l2)) + q / 2 * (l1 * l2 - 1) ** 2
+
+
+def natural_width(q, l1):
+    """n(l1) = (q l1 + sqrt(q^2 l1^2 + 4 q (q + q l1^2))) / (2 (q + q l1^2)), dW_s/dl2 = 0."""
+    return (q * l1 + math.sqrt(q * q * l1 * l1 + 4 * q * (q + q * l1 * l1))) / (2 * (q + q * l1 * l1))
+
+
+def in_plane_stretch(l1, l2, turn=math.radians(30.0)):
+    """u = (F - I) X, F = Q diag(l1, 1, l2) Q^T, Q a turn about y."""
+    c, s = math.cos(turn), math.sin(turn)
+    Q = np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+    G = Q @ np.diag([l1, 1.0, l2]) @ Q.T - np.eye(3)
+    return lambda x: G @ x
+
+
+def tension_field_skin(fitter):
+    ctx = fitter.problems.ctx[2]
+    q = 3000.0
+    skin = CANDIDATE_FORMS["skin"].Term(ctx, {}, None)
+    skin.set_strength(q)
+    e = 0.05
+    area_skin = ctx.integrate(ctx.constant(1.0) * ctx.ds("skin"))
+    check("skin, equibiaxial (taut)", energy(ctx, skin, lambda x: e * x),
+          T_S * membrane_w(q, 1 + e, 1 + e) * area_skin, 1e-6)
+    on_base = T_S * skin.density * ctx.ds("base")
+    area_base = ctx.integrate(ctx.constant(1.0) * ctx.ds("base"))
+    n = natural_width(q, 1.1)
+    for name, l1, l2, w in (("taut", 1.1, 1.05, membrane_w(q, 1.1, 1.05)),
+                            ("wrinkled", 1.1, 0.9, membrane_w(q, 1.1, n))):
+        ctx.u.interpolate(in_plane_stretch(l1, l2))
+        check(f"skin density on the base, {name} ({l1}, {l2}; n = {n:.4f})", ctx.integrate(on_base),
+              T_S * w * area_base, 1e-6)
+    ctx.u.interpolate(in_plane_stretch(0.98, 0.95))
+    slack = ctx.integrate(on_base)
+    print(f"{'ok  ' if slack == 0.0 else 'FAIL'} skin density on the base, slack (0.98, 0.95): {slack:.3g}")
+    if slack != 0.0:
+        failures.append("skin, slack")
+
+
 def pseudo_true_of_own_family(fitter):
     q0 = 5e-7
     entry = {"material": {"mu": 500.0, "lambda": 2000.0, "rho": 970.0},
@@ -77,17 +127,37 @@ def pseudo_true_of_own_family(fitter):
                           "pattern": {"b_z": 0.0, "b_x": 0.0, "b_r": 0.0},
                           "strength": {"value": q0},
                           "q_equivalent": {"parameter": "base.compliance", "value": 2.5 * q0}}]}
-    res = fitter.fit(entry, 0)
+    res = fitter.fit(entry)["base_springs"]
     check("pseudo-true of a flat smooth bed", res["value"], q0, 1e-3)
     if not (res["unexplained_share"] < 1e-3):
         failures.append("unexplained share")
     print(f"unexplained share {res['unexplained_share']:.2e}, history {res['history']}")
 
 
+def joint_pseudo_true_of_own_family(fitter):
+    q_bed, q_skin = 5e-7, 1500.0
+    entry = {"material": {"mu": 500.0, "lambda": 2000.0, "rho": 970.0},
+             "postures": [{"name": "standing", "theta_deg": 0.0}, {"name": "supine", "theta_deg": 90.0}],
+             "effects": [{"model": "smooth_base_bed", "candidate": "base_springs",
+                          "pattern": {"b_z": 0.0, "b_x": 0.0, "b_r": 0.0}, "strength": {"value": q_bed},
+                          "q_equivalent": {"parameter": "base.compliance", "value": 2.5 * q_bed}},
+                         {"model": "candidate:skin", "candidate": "skin", "pattern": {},
+                          "strength": {"value": q_skin},
+                          "q_equivalent": {"parameter": "skin.mu", "value": 0.5 * q_skin}}]}
+    res = fitter.fit(entry)
+    check("joint pseudo-true, the bed", res["base_springs"]["value"], q_bed, 1e-3)
+    check("joint pseudo-true, the skin", res["skin"]["value"], q_skin, 1e-3)
+    if not (res["skin"]["unexplained_share"] < 1e-3 and res["skin"]["joint"] == ["base_springs", "skin"]):
+        failures.append("joint unexplained share or joint list")
+    print(f"unexplained share {res['skin']['unexplained_share']:.2e}, history {res['skin']['history']}")
+
+
 if __name__ == "__main__":
     f = Fitter(0.014)
     closed_forms(f)
+    tension_field_skin(f)
     pseudo_true_of_own_family(f)
+    joint_pseudo_true_of_own_family(f)
     if failures:
         print(f"FAILED: {failures}")
         sys.exit(1)

@@ -1,23 +1,27 @@
 """The forms of breastsim's candidate terms, written in the truth code from
-their documented equations (docs/DIAGNOSE.md, SPEC.md; nothing is imported
-from forms/), for one purpose: the pseudo-true value of a candidate, the
-value whose solve on the truth's own mesh reproduces a hidden effect best
-(pseudo_true.py). They never make a recording.
+their documented equations (docs/DIAGNOSE.md, SPEC.md, the docstring of
+forms/skin.py; nothing is imported from forms/), for one purpose: the
+pseudo-true value of a candidate, the value whose solve on the truth's own
+mesh reproduces a hidden effect best (pseudo_true.py). They never make a
+recording.
 
     base_springs:         E = int_base c/2 |u|^2 dA,  c = 1/q uniform
                           (replaces the fixed base)
     gland_core:           E = int_B q chi(X) W(F) dV,  chi = 1 where
                           X^2 + Z^2 < r_g^2 (r_g = 30 mm), W eq. (5)
     suspensory_ligament:  E = int_skin q/2 w(X) |u|^2 dA,  w = 1 where Z > 0
-
-The skin candidate (a neo-Hookean tension-field membrane) is a different
-constitutive law from the truth's fibre net and has no form here.
+    skin:                 E = int_skin t_s W_s dA,  the relaxed tension-field
+                          neo-Hookean membrane of forms/skin.py, mu_s = q,
+                          lambda_s = q (keep_ratio, default ratio 1),
+                          t_s = 1.5 mm
 """
 import math
 
 import ufl
 
 R_G = 0.03  # m, gland.radius of cases/default.toml
+T_S = 0.0015  # m, skin.thickness of cases/default.toml
+DISC_MIN = 1e-10  # (l1^2 - l2^2)^2 below this: the plain law (forms/skin.py)
 
 
 class _Form:
@@ -80,6 +84,44 @@ class UpperPoleSprings(_Form):
         self.energy = 0.5 * self.q * w * ufl.dot(ctx.u, ctx.u) * ctx.ds("skin")  # q/2 w |u|^2
 
 
+def membrane_density(mu, lmbda, l1, l2):
+    """W_s(l1, l2) = mu/2 (l1^2 + l2^2 - 2 - 2 ln(l1 l2)) + lambda/2 (l1 l2 - 1)^2."""
+    return mu / 2 * (l1 ** 2 + l2 ** 2 - 2 - 2 * ufl.ln(l1 * l2)) + lmbda / 2 * (l1 * l2 - 1) ** 2
+
+
+def tension_field_density(ctx, mu, lmbda):
+    """The relaxed membrane energy per unit volume of skin (forms/skin.py):
+    C_s = P F^T F P (P = I - N (x) N), J_s = |J F^-T N|, I1 = tr C_s,
+    l1^2 = (I1 + sqrt(I1^2 - 4 J_s^2)) / 2, l2 = J_s / l1;
+    taut (l2 >= n(l1)): W_s; wrinkled (l1 > 1, l2 < n): W_s(l1, n(l1));
+    slack (l1 <= 1): 0; the plain W_s where I1^2 - 4 J_s^2 < DISC_MIN."""
+    F, N = ctx.F, ctx.N
+    P = ctx.I - ufl.outer(N, N)
+    C_s = P * F.T * F * P
+    cofN = ctx.J * ufl.inv(F).T * N
+    J_s = ufl.sqrt(ufl.dot(cofN, cofN))
+    I1 = ufl.tr(C_s)
+    w_plain = mu / 2 * (I1 - 2 - 2 * ufl.ln(J_s)) + lmbda / 2 * (J_s - 1) ** 2
+    disc = I1 ** 2 - 4 * J_s ** 2
+    l1 = ufl.sqrt((I1 + ufl.sqrt(ufl.max_value(disc, DISC_MIN))) / 2)
+    l2 = J_s / l1
+    # natural width, dW_s/dl2 = 0: n = (L l1 + sqrt(L^2 l1^2 + 4 mu (mu + L l1^2))) / (2 (mu + L l1^2))
+    n = (lmbda * l1 + ufl.sqrt(lmbda ** 2 * l1 ** 2 + 4 * mu * (mu + lmbda * l1 ** 2))) \
+        / (2 * (mu + lmbda * l1 ** 2))
+    tense = ufl.conditional(ufl.lt(l2, n), membrane_density(mu, lmbda, l1, n), w_plain)
+    return ufl.conditional(ufl.gt(disc, DISC_MIN), ufl.conditional(ufl.gt(l1, 1.0), tense, 0.0), w_plain)
+
+
+class TensionFieldSkin(_Form):
+    NAME = "candidate:skin"
+    CANDIDATE = "skin"
+
+    def __init__(self, ctx, pattern=None, tissue=None):
+        super().__init__(ctx, "skin.mu")
+        self.density = tension_field_density(ctx, self.q, self.q)       # lambda_s = mu_s = q
+        self.energy = T_S * self.density * ctx.ds("skin")                 # int_skin t_s W_s dA
+
+
 def _module(cls):
     """The class itself serves as the module: NAME, CANDIDATE, structure,
     REPLACES_FIXED_BASE and Term."""
@@ -87,4 +129,5 @@ def _module(cls):
     return cls
 
 
-CANDIDATE_FORMS = {c.CANDIDATE: _module(c) for c in (UniformBed, SharpCore, UpperPoleSprings)}
+CANDIDATE_FORMS = {c.CANDIDATE: _module(c) for c in (UniformBed, SharpCore, UpperPoleSprings,
+                                                         TensionFieldSkin)}
