@@ -348,6 +348,17 @@ bool discovery_round(Search& s, Diagnosis& d)
   s.fine_state = std::move(fine); // none: step 9 refits on the finer mesh
   return true;
 }
+
+/// The final model refitted on the finer mesh: a full fit for a calibration
+/// (fit only), else Gauss-Newton steps from the diagnosis mesh's fit.
+FitState final_fit_on_finer_mesh(Search& s, bool fit_only)
+{
+  const Config fine = finer(s.current, s.o.mesh_ratio);
+  if (fit_only)
+    return fit(*s.fine_ev, fine, s.frees, log_values(s.state), s.lsq, "refit on the finer mesh");
+  const Evaluate on_fine = [&](const Config& c) { return (*s.fine_ev)(c); };
+  return gauss_newton_refit(on_fine, fine, s.frees, s.state, "final model on the finer mesh");
+}
 } // namespace
 
 Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOptions& o,
@@ -366,12 +377,10 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
       break; // step 8: nothing (more) is significant
   d.final_fit = s.state;
   d.se_statistical = s.state.uncertainty.se_log;
-  // Step 9: the numerical uncertainty of the found values.
-  if (s.fine_ev && (s.found > 0 || d.fit_only) && !s.frees.empty())
+  // Step 9: the numerical uncertainty of the fitted values.
+  if (s.fine_ev && !s.frees.empty())
   {
-    const FitState f = s.fine_state ? *s.fine_state
-                                    : fit(*s.fine_ev, finer(s.current, o.mesh_ratio), s.frees,
-                                          log_values(s.state), s.lsq, "refit on the finer mesh");
+    const FitState f = s.fine_state ? *s.fine_state : final_fit_on_finer_mesh(s, d.fit_only);
     d.se_statistical = f.uncertainty.se_log;
     d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.se_numerical);
   }

@@ -40,6 +40,8 @@ rms = lambda f: sum(p["rms_mm"] for p in f["postures"]) / len(f["postures"])
 if hidden == "control":
     assert found == [], f"control: false discovery {found}"
     assert "explains the recording" in d["verdict"], d["verdict"]
+    # Nothing found: the tissue values still carry their numerical part (finer mesh).
+    assert len(d["se_log_numerical"]) == len(final["parameters"]) > 0, d["se_log_numerical"]
 else:
     assert found == [hidden], f"hidden {hidden}: named {found}"
     par = rec["truth"]["parameter"]
