@@ -5,27 +5,31 @@ The hidden effects have other forms than breastsim's candidates, so "the
 hidden value" of a candidate parameter needs a definition. The manifest's
 q_equivalent is a linearised or averaged stand-in. The pseudo-true value is
 the one a fit converges to with noise-free data and no discretisation
-difference: every hidden effect of a recording with a candidate form in the
-truth code (forms_truth/candidate_forms.py: base_springs, gland_core,
+difference, of the model family the diagnosis fits: every hidden effect of
+a recording with a candidate form in the truth code
+(forms_truth/candidate_forms.py: base_springs, gland_core,
 suspensory_ligament, skin) is replaced by the candidate's form, all of them
 together (the diagnosis fits the candidates of a pair jointly; an effect
-without a form would stay as in the truth; mu and lambda are the truth's),
-and their values are
+without a form would stay as in the truth), and their values are fitted
+together with the tissue's mu and lambda (the diagnosis fits them too,
+--fit mu,lambda; a form difference moves them):
 
-    q* = argmin_q sum_postures int_skin ((u_q - u_truth) . n)^2 dA,
+    (q*, mu*, lambda*) = argmin sum_postures int_skin ((u - u_truth) . n)^2 dA,
 
 q the vector of the replaced effects' parameters, n the unit normal of the
 truth's deformed skin, both solved on the truth's own P2 mesh. Gauss-Newton
-in ln q with a forward-difference Jacobian (one column per parameter), from
-the manifest's equivalents. Also reported: the share of the effects the
-candidates' forms leave unexplained, ||r(q*)|| / ||r(replaced effects
-removed)|| (0: the forms agree; near 1: the candidates cannot reproduce
-them), the same for every candidate of a joint fit ("joint" lists them).
+in ln (q, mu, lambda) with a forward-difference Jacobian (one column per
+parameter), from the values with mu, lambda fixed where known, else the
+manifest's equivalents, and the truth's mu, lambda. Also reported: mu*,
+lambda* ("material"), the share of the effects the candidates' forms leave
+unexplained, ||r*|| / ||r(replaced effects removed)|| (0: the forms agree;
+near 1: the candidates cannot reproduce them), the same for every candidate
+of a joint fit ("joint" lists them), and the values of the earlier
+definition with mu, lambda fixed at the truth's ("material_fixed").
 
-Definition version 2 (this one) differs from version 1 (each effect of a
-pair replaced alone, the other kept) only for recordings with several
-effects: an entry without "definition_version" is kept for a single-effect
-recording and recomputed for a pair.
+Definition version 3 (this one); version 2 held mu, lambda at the truth's,
+version 1 also replaced each effect of a pair alone. Entries of another
+version are recomputed.
 
     nice -n 19 python3 bench/truth/pseudo_true.py              # main set, missing or outdated entries
     nice -n 19 python3 bench/truth/pseudo_true.py --set validation
@@ -53,11 +57,12 @@ from problem import Problems  # noqa: E402
 from recording_io import read_manifest, write_json_atomic  # noqa: E402
 from surface import Skin  # noqa: E402
 
-DEFINITION = ("q* = argmin_q sum_postures int_skin ((u_q - u_truth) . n)^2 dA: every hidden effect with a "
-              "candidate form replaced by the candidate's form (forms_truth/candidate_forms.py), their q "
-              "fitted jointly; other hidden effects and mu, lambda as in the truth, both solved on the "
-              "truth's P2 mesh; n the truth's deformed skin normal")
-DEFINITION_VERSION = 2
+DEFINITION = ("(q*, mu*, lambda*) = argmin sum_postures int_skin ((u - u_truth) . n)^2 dA: every hidden "
+              "effect with a candidate form replaced by the candidate's form (forms_truth/candidate_forms.py), "
+              "their q fitted jointly with the tissue's mu and lambda; other hidden effects as in the truth, "
+              "both solved on the truth's P2 mesh; n the truth's deformed skin normal")
+DEFINITION_VERSION = 3
+MATERIAL = ("mu", "lambda")   # fitted with the candidates, as the diagnosis fits them (--fit mu,lambda)
 STEP = 0.05          # forward-difference step in ln q
 MAX_ITERATIONS = 8
 TOL_LOG = 0.005      # stop when |delta ln q| is below this
@@ -71,9 +76,10 @@ class Fitter:
         self.skin = Skin(self.problems.ctx[2])
         self.sqrt_w = None
 
-    def solve(self, entry, effects, strengths, starts=None):
+    def solve(self, entry, effects, strengths, starts=None, material=None):
+        """`material` overrides entry["material"] (mu, lambda)."""
         prob = self.problems.get(2, effects)
-        prob.configure(entry["material"], effects, strengths)
+        prob.configure({**entry["material"], **(material or {})}, effects, strengths)
         return prob.solve_postures(entry["postures"], entry["material"]["rho"], starts)
 
     def residual(self, u_truth, u):
@@ -90,10 +96,12 @@ class Fitter:
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         return self.solve(entry, hidden, {e["model"]: e["strength"]["value"] for e in entry["effects"]})
 
-    def fit(self, entry, indices=None, u_truth=None):
+    def fit(self, entry, indices=None, u_truth=None, start=None):
         """{candidate: q* and its figures} of the candidates replacing the
         hidden effects `indices` jointly (default: every effect with a
-        candidate form); `u_truth`: the truth solves, computed here if not given."""
+        candidate form), mu and lambda fitted with them; `u_truth`: the truth
+        solves, computed here if not given; `start`: starting values by
+        candidate or "mu", "lambda" (default: the equivalents, the truth's)."""
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         strengths = {e["model"]: e["strength"]["value"] for e in entry["effects"]}
         indices = replaceable(entry) if indices is None else list(indices)
@@ -103,17 +111,23 @@ class Fitter:
         others = [h for k, h in enumerate(hidden) if k not in indices]
         u_none = self.solve(entry, others, strengths, u_truth)     # the truth without the replaced effects
         effects = others + [(f.NAME, {}) for f in forms]
+        n = len(forms)
 
         def evaluate(y, start):
-            u = self.solve(entry, effects, {**strengths, **{f.NAME: math.exp(v) for f, v in zip(forms, y)}},
-                           start)
+            # y = (ln q of each form, ln mu, ln lambda)
+            u = self.solve(entry, effects, {**strengths, **{f.NAME: math.exp(v) for f, v in zip(forms, y[:n])}},
+                           start, {k: math.exp(v) for k, v in zip(MATERIAL, y[n:])})
             return u, self.residual(u_truth, u)
 
-        y, r, history = gauss_newton(evaluate, np.log([t["q_equivalent"]["value"] for t in targets]), u_truth)
+        start = start or {}
+        y0 = np.log([start.get(t["candidate"], t["q_equivalent"]["value"]) for t in targets]
+                    + [start.get(k, entry["material"][k]) for k in MATERIAL])
+        y, r, history = gauss_newton(evaluate, y0, u_truth)
         effect_norm = float(np.linalg.norm(self.residual(u_truth, u_none)))
-        return results(targets, y, history, {
+        return results(targets, y[:n], history, {
             "unexplained_share": float(np.linalg.norm(r)) / effect_norm if effect_norm > 0 else None,
-            "effect_rms_mm": 1e3 * effect_norm / math.sqrt(self._area_sum(u_truth))})
+            "effect_rms_mm": 1e3 * effect_norm / math.sqrt(self._area_sum(u_truth)),
+            "material": {k: math.exp(v) for k, v in zip(MATERIAL, y[n:])}})
 
     def _area_sum(self, u_truth):
         return sum(float(self.skin.areas(ut).sum()) for ut in u_truth)
@@ -161,17 +175,22 @@ def replaceable(entry):
     return [k for k, e in enumerate(entry["effects"]) if e["candidate"] in CANDIDATE_FORMS]
 
 
-def is_current(stored, entry):
-    """A stored entry holds under DEFINITION: computed by it, or by version 1
-    (no field) for a single-effect recording, where the two coincide."""
-    version = stored.get("definition_version", 1)
-    return version == DEFINITION_VERSION or (version == 1 and len(entry["effects"]) == 1)
+def is_current(stored):
+    """A stored entry computed under DEFINITION."""
+    return stored.get("definition_version", 1) == DEFINITION_VERSION
+
+
+def material_fixed_values(stored):
+    """{candidate: q*} of an entry of version 1 or 2 (mu, lambda the truth's), {} if none."""
+    if not stored or is_current(stored):
+        return (stored or {}).get("material_fixed", {})
+    return {c: v["value"] for c, v in stored["candidates"].items()}
 
 
 def parse_args():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--set", dest="which", choices=["main", "validation"], default="main")
-    ap.add_argument("--only", default="", help="recording names (comma-separated)")
+    ap.add_argument("--only", default="", help="recording names (comma-separated; computed in this order)")
     ap.add_argument("--redo", action="store_true", help="recompute existing entries")
     ap.add_argument("--out", default=None, help="output file (default: pseudo_true.json beside the manifest; "
                                                 "one process per file)")
@@ -185,22 +204,27 @@ def main():
     if manifest is None:
         sys.exit(f"pseudo_true.py: no manifest in {folder}")
     out_path = Path(a.out) if a.out else folder / "pseudo_true.json"
+    previous = (read_manifest(folder / "pseudo_true.json") or {}).get("recordings", {})
     out = read_manifest(out_path) or {"format": 1, "generator": "bench/truth/pseudo_true.py",
                                       "definition": DEFINITION, "recordings": {}}
     only = [n for n in a.only.split(",") if n]
     out["definition"] = DEFINITION
     todo = [(n, e) for n, e in sorted(manifest["recordings"].items())
             if replaceable(e) and (not only or n in only)
-            and (a.redo or n not in out["recordings"] or not is_current(out["recordings"][n], e))]
+            and (a.redo or n not in out["recordings"] or not is_current(out["recordings"][n]))]
+    if only:
+        todo.sort(key=lambda item: only.index(item[0]))   # in the order given
     print(f"{len(todo)} recording(s)", flush=True)
     fitter = Fitter(0.006) if todo else None
     for name, entry in todo:
         if entry["truth_mesh"]["size_m"] != 0.006 or entry["truth_mesh"].get("rim_size_m"):
             sys.exit(f"pseudo_true.py: {name}: truth mesh {entry['truth_mesh']} is not the uniform 6 mm mesh")
         t0 = time.perf_counter()
-        res = fitter.fit(entry)
+        fixed = material_fixed_values(out["recordings"].get(name) or previous.get(name))
+        res = fitter.fit(entry, start=fixed)
         out["recordings"][name] = {"seconds": round(time.perf_counter() - t0, 1),
-                                   "definition_version": DEFINITION_VERSION, "candidates": res}
+                                   "definition_version": DEFINITION_VERSION, "candidates": res,
+                                   "material_fixed": fixed}
         out["recordings"] = dict(sorted(out["recordings"].items()))
         write_json_atomic(out_path, out)
         print(name, {c: (f"{v['value']:.4g} (equivalent {v['equivalent']:.4g}, "

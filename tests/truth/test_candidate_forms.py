@@ -144,8 +144,10 @@ def joint_pseudo_true_of_own_family(fitter):
                          {"model": "candidate:skin", "candidate": "skin", "pattern": {},
                           "strength": {"value": q_skin},
                           "q_equivalent": {"parameter": "skin.mu", "value": 0.5 * q_skin}}]}
-    res = fitter.fit(entry)
+    res = fitter.fit(entry, start={"mu": 600.0, "lambda": 1500.0})
     check("joint pseudo-true, the bed", res["base_springs"]["value"], q_bed, 1e-3)
+    check("joint pseudo-true, mu (from 600)", res["skin"]["material"]["mu"], 500.0, 1e-3)
+    check("joint pseudo-true, lambda (from 1500)", res["skin"]["material"]["lambda"], 2000.0, 1e-3)
     check("joint pseudo-true, the skin", res["skin"]["value"], q_skin, 1e-3)
     if not (res["skin"]["unexplained_share"] < 1e-3 and res["skin"]["joint"] == ["base_springs", "skin"]):
         failures.append("joint unexplained share or joint list")
