@@ -39,18 +39,36 @@ def parts(dia, name):
             pick("se_log_posture_jackknife"), pick("se_log_patch_jackknife"))
 
 
-def cases(manifest, out, pseudo, tissue):
+def read_pseudo_material(manifest_dir):
+    """{recording: {"mu": mu*, "lambda": lambda*}} of pseudo_true.json
+    (definition 3: fitted with the candidates), {} if absent."""
+    path = manifest_dir / "pseudo_true.json"
+    if not path.exists():
+        return {}
+    out = {}
+    for name, entry in json.loads(path.read_text())["recordings"].items():
+        for cand in entry["candidates"].values():
+            if "material" in cand:
+                out[name] = cand["material"]
+    return out
+
+
+def cases(manifest, out, pseudo, tissue, material=None):
     """(recording, parameter, reference, kind, parts) per correct discovery's
-    q, or (tissue) per recording's mu and lambda, whose truth is in the family
-    (a control's interval has only its statistical part)."""
+    q, or (tissue) per recording's mu and lambda: the truth's for a control
+    (in the family), for an effect recording mu*, lambda* fitted with the
+    candidates' forms (`material`) where known, else the truth's."""
+    material = material or {}
     for name, entry in sorted(manifest["recordings"].items()):
         path = out / name / "diagnosis" / "diagnosis.json"
         if not path.exists():
             continue
         dia = json.loads(path.read_text())
         if tissue:
+            best = material.get(name) if entry["effects"] else None
             for key in ("mu", "lambda"):
-                yield name, key, entry["material"][key], "truth", parts(dia, key)
+                ref, kind = (best[key], "pseudo-true") if best else (entry["material"][key], "truth")
+                yield name, key, ref, kind, parts(dia, key)
             continue
         for eff in entry["effects"]:
             if eff["candidate"] not in dia.get("discovered", []):
@@ -72,8 +90,9 @@ def main():
     manifest_path = Path(a.manifest)
     manifest = json.loads(manifest_path.read_text())
     pseudo = read_pseudo_true(manifest_path.parent)
+    material = read_pseudo_material(manifest_path.parent)
     for tissue in (False, True):
-        table(list(cases(manifest, Path(a.out), pseudo, tissue)),
+        table(list(cases(manifest, Path(a.out), pseudo, tissue, material)),
               "tissue mu, lambda" if tissue else
               "candidate q of the correct discoveries")
     return 0
@@ -121,6 +140,10 @@ def selftest():
         assert got == want, got
         tissue = count_inside(list(cases(manifest, out, {}, True)))
         assert tissue["none"] == 2, tissue
+        # mu* = 520 fitted with the candidate: ln(520/500) = 0.039 > 1.96 x 0.01
+        best = {"r": {"mu": 520.0, "lambda": 1000.0}}
+        tissue = count_inside(list(cases(manifest, out, {}, True, best)))
+        assert tissue["none"] == 1, tissue
     print("coverage_by_rule selftest: OK")
     return 0
 
