@@ -20,7 +20,7 @@ import math
 import tempfile
 from pathlib import Path
 
-from run_diagnose import HERE, read_pseudo_true
+from run_diagnose import HERE, pseudo_true_recordings, read_pseudo_true
 
 RULES = {
     "none": lambda post, patch: 0.0,
@@ -42,11 +42,8 @@ def parts(dia, name):
 def read_pseudo_material(manifest_dir):
     """{recording: {"mu": mu*, "lambda": lambda*}} of pseudo_true.json
     (definition 3: fitted with the candidates), {} if absent."""
-    path = manifest_dir / "pseudo_true.json"
-    if not path.exists():
-        return {}
     out = {}
-    for name, entry in json.loads(path.read_text())["recordings"].items():
+    for name, entry in pseudo_true_recordings(manifest_dir).items():
         for cand in entry["candidates"].values():
             if "material" in cand:
                 out[name] = cand["material"]

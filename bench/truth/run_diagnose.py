@@ -89,13 +89,16 @@ def run_one(binary, manifest_dir, entry, out, case, extra, nice, rerun, mpi=None
 
 
 # -- scoring ---------------------------------------------------------------------
+def pseudo_true_recordings(manifest_dir):
+    """The recordings of pseudo_true.py's output beside the manifest, {} if absent."""
+    path = manifest_dir / "pseudo_true.json"
+    return json.loads(path.read_text())["recordings"] if path.exists() else {}
+
+
 def read_pseudo_true(manifest_dir):
     """{recording: {candidate: q*}} from pseudo_true.py's output, {} if absent."""
-    path = manifest_dir / "pseudo_true.json"
-    if not path.exists():
-        return {}
-    recs = json.loads(path.read_text())["recordings"]
-    return {n: {c: v["value"] for c, v in r["candidates"].items()} for n, r in recs.items()}
+    return {n: {c: v["value"] for c, v in r["candidates"].items()}
+            for n, r in pseudo_true_recordings(manifest_dir).items()}
 
 
 def read_result(out, entry, pseudo=None):
