@@ -14,4 +14,5 @@ TERMS = [
     "suspensory_ligament",
     "gland_core",
     "tissue_suture",
+    "chest_wall",
 ]

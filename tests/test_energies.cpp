@@ -153,6 +153,23 @@ TEST_P(Energies, SuspensoryLigament)
   EXPECT_NEAR(m->energy("suspensory_ligament") / expected, 1.0, GetParam() == 1 ? 0.03 : 0.01);
 }
 
+TEST_P(Energies, ChestWall)
+{
+  // u = (0, -a, 0): the skin below height a goes a - Y behind the chest.
+  // On the sphere of radius Rs the band [Y, Y + dY] has area pi Rs dY on the
+  // half cap (Archimedes), so E = k/2 pi Rs int_0^a (a - Y)^2 dY
+  // = k pi Rs a^3 / 6. The faceted skin integrates the kinked density to O(h).
+  const double k = 2e7, H = c.number("geometry.H"), R = c.number("geometry.R");
+  const double a = 0.6 * H, Rs = (R * R + H * H) / (2 * H);
+  m->set_parameter("k_w", {k});
+  set_homogeneous(*m, {1, 0, 0, 0, 1, 0, 0, 0, 1}, {0.0, -a, 0.0});
+  EXPECT_NEAR(m->energy("chest_wall") / (k * M_PI * Rs * a * a * a / 6), 1.0,
+              GetParam() == 1 ? 0.05 : 0.01);
+  // In front of the chest (u_y > 0 everywhere) the wall does nothing.
+  set_homogeneous(*m, {1, 0, 0, 0, 1, 0, 0, 0, 1}, {0.002, 0.0005, -0.003});
+  EXPECT_EQ(m->energy("chest_wall"), 0.0);
+}
+
 TEST_P(Energies, GlandCore)
 {
   // Homogeneous F0: E = m_g W(F0) x V_core, V_core = volume of the half cap

@@ -54,3 +54,53 @@ INSTANTIATE_TEST_SUITE_P(Shapes, HalfCap,
                          ::testing::Values(CapCase{0.07, 0.06, 1}, CapCase{0.07, 0.06, 2},
                                            CapCase{0.05, 0.02, 1}, CapCase{0.06, 0.08, 1},
                                            CapCase{0.06, 0.08, 2}));
+
+namespace
+{
+/// Mean edge length of the P1 cap's boundary edges on the base within `band`
+/// of the rim (distance to the circle of radius R in y = 0), and elsewhere.
+std::pair<double, double> rim_and_other_edges(const meshes::TaggedMesh& tm, double R, double band)
+{
+  auto node = [&](std::int64_t i) { return &tm.x[3 * i]; };
+  auto near_rim = [&](const double* p)
+  { return std::abs(p[1]) < 1e-9 && std::abs(std::hypot(p[0], p[2]) - R) < band; };
+  double rim = 0, other = 0;
+  int n_rim = 0, n_other = 0;
+  for (std::size_t f = 0; f < tm.facet_tags.size(); ++f)
+    for (int e = 0; e < 3; ++e)
+    {
+      const double* a = node(tm.facets[3 * f + e]);
+      const double* b = node(tm.facets[3 * f + (e + 1) % 3]);
+      const double len = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+      if (near_rim(a) && near_rim(b))
+        rim += len, ++n_rim;
+      else
+        other += len, ++n_other;
+    }
+  return {rim / std::max(n_rim, 1), other / std::max(n_other, 1)};
+}
+} // namespace
+
+TEST(HalfCapGrading, ElementsShrinkTowardTheRim)
+{
+  // geometry.rim_size_ratio = 1/3: edges along the rim about a third of
+  // mesh_size, the rest of the mesh as before; 1 leaves the mesh uniform.
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank != 0)
+    GTEST_SKIP() << "gmsh meshes on rank 0";
+  meshes::HalfCapSpec spec;
+  spec.mesh_size = 0.012;
+  const auto uniform = meshes::mesh_half_cap(spec, 1, 2, 3);
+  spec.rim_size_ratio = 1.0 / 3;
+  const auto graded = meshes::mesh_half_cap(spec, 1, 2, 3);
+  const auto [rim_u, other_u] = rim_and_other_edges(uniform, spec.R, 1e-3);
+  const auto [rim_g, other_g] = rim_and_other_edges(graded, spec.R, 1e-3);
+  std::cout << "rim edges " << rim_u << " -> " << rim_g << " m, cells " << uniform.num_cells()
+            << " -> " << graded.num_cells() << "\n";
+  EXPECT_GT(rim_u, 0.7 * spec.mesh_size);
+  EXPECT_LT(rim_g, 0.5 * spec.mesh_size);
+  EXPECT_GT(rim_g, 0.2 * spec.mesh_size);
+  EXPECT_GT(graded.num_cells(), uniform.num_cells());
+  EXPECT_LT(graded.num_cells(), 4 * uniform.num_cells());
+}

@@ -63,6 +63,9 @@ def parse_args():
     ap.add_argument("--mesh-size", type=float, default=0.006, help="truth mesh size [m] (P2)")
     ap.add_argument("--rim-size", type=float, default=None,
                     help="element size at the base rim [m], graded to --mesh-size (default: uniform)")
+    ap.add_argument("--chest-wall", type=float, default=None, metavar="K",
+                    help="the chest wall as a contact penalty of stiffness K [Pa/m] on the skin "
+                         "(forms_truth/chest_contact.py; default: no chest wall)")
     ap.add_argument("--points", type=int, default=2000, help="skin points per posture")
     ap.add_argument("--set", dest="which", choices=["main", "validation"], default="main",
                     help="the benchmark (main, into --out) or the validation set "
@@ -75,20 +78,23 @@ def parse_args():
         ap.error("--mesh-size must lie in [0.002, 0.02] m")
     if a.rim_size is not None and not (a.mesh_size / 10 <= a.rim_size <= a.mesh_size):
         ap.error(f"--rim-size must lie in [mesh-size/10, mesh-size] = [{a.mesh_size / 10}, {a.mesh_size}] m")
+    if a.chest_wall is not None and not (1e5 <= a.chest_wall <= 1e9):
+        ap.error(f"--chest-wall K = {a.chest_wall} Pa/m must lie in [1e5, 1e9]")
     return a
 
 
 class Generator:
-    def __init__(self, mesh_size, points, rim_size=None):
+    def __init__(self, mesh_size, points, rim_size=None, chest_wall_k=None):
         t0 = time.perf_counter()
         mesh, facets = build_half_cap(R, H, mesh_size, order=2, rim_size=rim_size)
-        self.problems = Problems(mesh, facets, R, H)
+        self.problems = Problems(mesh, facets, R, H, chest_wall_k)
         self.skin = Skin(self.problems.ctx[2])
         V2 = self.problems.ctx[2].V
         self.apex = apex_index(V2, H)
         self.apex_X = V2.tabulate_dof_coordinates()[self.apex]
         self.points = points
-        self.mesh_info = {"size_m": mesh_size, "rim_size_m": rim_size, "order": 2, "tetrahedra": mesh.topology.index_map(3).size_local,
+        self.mesh_info = {"size_m": mesh_size, "rim_size_m": rim_size, "order": 2, "chest_wall_k_Pa_per_m": chest_wall_k,
+                          "tetrahedra": mesh.topology.index_map(3).size_local,
                           "dofs": 3 * V2.dofmap.index_map.size_local, "skin_triangles": len(self.skin.tris)}
         print(f"truth mesh: {self.mesh_info} ({time.perf_counter() - t0:.1f} s)", flush=True)
 
@@ -258,7 +264,7 @@ def main():
     print(f"{len(todo)} recording(s) to generate", flush=True)
     if not todo:
         return 0
-    gen = Generator(a.mesh_size, a.points, a.rim_size)
+    gen = Generator(a.mesh_size, a.points, a.rim_size, a.chest_wall)
     failed = []
     for spec in todo:
         print(f"{spec['name']}: ...", flush=True)

@@ -7,7 +7,7 @@ problem serves every recording with the same effects.
 """
 from dolfinx import fem
 
-from forms_truth import EFFECTS, gravity, tissue
+from forms_truth import EFFECTS, chest_contact, gravity, tissue
 from forms_truth.candidate_forms import CANDIDATE_FORMS
 from forms_truth.context import Context
 from geometry import TAGS
@@ -19,17 +19,20 @@ MODULES = {**EFFECTS, **{m.NAME: m for m in CANDIDATE_FORMS.values()}}
 
 
 class Problem:
-    def __init__(self, ctx, effects):
-        """effects: list of (effect NAME, pattern)."""
+    def __init__(self, ctx, effects, chest_wall_k=None):
+        """effects: list of (effect NAME, pattern); chest_wall_k: the chest
+        wall's penalty stiffness [Pa/m] (None: no chest wall)."""
         self.ctx = ctx
         self.tissue = tissue.Term(ctx)
         self.gravity = gravity.Term(ctx)
         self.effects = {}
         for name, pattern in effects:
             self.effects[name] = MODULES[name].Term(ctx, pattern, self.tissue)
+        terms = list(self.effects.values())
+        if chest_wall_k is not None:
+            terms.append(chest_contact.Term(ctx, chest_wall_k))
         fixed_base = not any(MODULES[n].REPLACES_FIXED_BASE for n in self.effects)
-        self.model = TruthModel(ctx, self.tissue, self.gravity, list(self.effects.values()),
-                                fixed_base)
+        self.model = TruthModel(ctx, self.tissue, self.gravity, terms, fixed_base)
 
     def configure(self, material, effects, strengths):
         """material: dict mu, lambda [Pa]; effects: list of (name, pattern);
@@ -56,15 +59,16 @@ class Problems:
     """One Context per degree on the shared mesh; problems built on demand and
     kept for the recordings that follow."""
 
-    def __init__(self, mesh, facet_tags, R, H):
+    def __init__(self, mesh, facet_tags, R, H, chest_wall_k=None):
         self.ctx = {d: Context(mesh, facet_tags, TAGS, R, H, degree=d) for d in (1, 2)}
+        self.chest_wall_k = chest_wall_k
         self._cache = {}
         self._p2 = fem.Function(self.ctx[2].V)
 
     def get(self, degree, effects):
         key = problem_key(degree, effects)
         if key not in self._cache:
-            self._cache[key] = Problem(self.ctx[degree], effects)
+            self._cache[key] = Problem(self.ctx[degree], effects, self.chest_wall_k)
         return self._cache[key]
 
     def all(self):

@@ -70,9 +70,9 @@ MAX_LOG_STEP = 1.5   # at most a factor e^1.5 per Gauss-Newton step
 
 
 class Fitter:
-    def __init__(self, mesh_size):
+    def __init__(self, mesh_size, chest_wall_k=None):
         mesh, facets = build_half_cap(R, H, mesh_size, order=2)
-        self.problems = Problems(mesh, facets, R, H)
+        self.problems = Problems(mesh, facets, R, H, chest_wall_k)
         self.skin = Skin(self.problems.ctx[2])
         self.sqrt_w = None
 
@@ -192,6 +192,7 @@ def parse_args():
     ap.add_argument("--set", dest="which", choices=["main", "validation"], default="main")
     ap.add_argument("--only", default="", help="recording names (comma-separated; computed in this order)")
     ap.add_argument("--redo", action="store_true", help="recompute existing entries")
+    ap.add_argument("--folder", default=None, help="folder of manifest.json (default: by --set)")
     ap.add_argument("--out", default=None, help="output file (default: pseudo_true.json beside the manifest; "
                                                 "one process per file)")
     return ap.parse_args()
@@ -199,7 +200,7 @@ def parse_args():
 
 def main():
     a = parse_args()
-    folder = HERE if a.which == "main" else HERE / "validation"
+    folder = Path(a.folder) if a.folder else (HERE if a.which == "main" else HERE / "validation")
     manifest = read_manifest(folder / "manifest.json")
     if manifest is None:
         sys.exit(f"pseudo_true.py: no manifest in {folder}")
@@ -215,7 +216,10 @@ def main():
     if only:
         todo.sort(key=lambda item: only.index(item[0]))   # in the order given
     print(f"{len(todo)} recording(s)", flush=True)
-    fitter = Fitter(0.006) if todo else None
+    walls = {e["truth_mesh"].get("chest_wall_k_Pa_per_m") for _, e in todo}
+    if len(walls) > 1:
+        sys.exit(f"pseudo_true.py: the recordings' chest walls differ ({walls}); run them apart with --only")
+    fitter = Fitter(0.006, walls.pop()) if todo else None
     for name, entry in todo:
         if entry["truth_mesh"]["size_m"] != 0.006 or entry["truth_mesh"].get("rim_size_m"):
             sys.exit(f"pseudo_true.py: {name}: truth mesh {entry['truth_mesh']} is not the uniform 6 mm mesh")

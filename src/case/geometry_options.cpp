@@ -12,6 +12,9 @@ void HalfCapSpec::declare(std::vector<KeyInfo>& keys)
                             "height of the neutral cap (nipple at (0, H, 0)); at most 1.5 R", true));
   keys.push_back(number_key("geometry.mesh_size", "m", d.mesh_size, 0.0, 0.1,
                             "target element size; between R/400 and min(R, H)/2", true));
+  keys.push_back(number_key("geometry.rim_size_ratio", "1", d.rim_size_ratio, 0.1, 1.0,
+                            "element size at the base rim (the inframammary fold) as a fraction of "
+                            "mesh_size, graded to mesh_size within 2 mesh_size of the rim; 1: uniform"));
   keys.push_back(integer_key("geometry.order", d.order, 1, 2, "element (and geometry) order: 1 = P1, 2 = P2"));
   keys.push_back(integer_key("geometry.refinements", d.refinements, 0, 4, "uniform refinements of the gmsh mesh"));
   KeyInfo file = text_key("geometry.mesh_file", d.mesh_file,
@@ -30,6 +33,7 @@ HalfCapSpec HalfCapSpec::from(const Config& c)
   s.R = c.number("geometry.R");
   s.H = c.number("geometry.H");
   s.mesh_size = c.number("geometry.mesh_size");
+  s.rim_size_ratio = c.number("geometry.rim_size_ratio");
   s.order = static_cast<int>(c.integer("geometry.order"));
   s.refinements = static_cast<int>(c.integer("geometry.refinements"));
   s.mesh_file = c.text("geometry.mesh_file");

@@ -16,6 +16,9 @@ struct HalfCapSpec
   double R = 0.07;          ///< base radius [m]
   double H = 0.06;          ///< height of the cap (apex y) [m]
   double mesh_size = 0.008; ///< target element size [m]
+  /// Element size at the base rim (the inframammary fold) as a fraction of
+  /// mesh_size, graded to mesh_size away from it; 1: uniform.
+  double rim_size_ratio = 1.0;
   int order = 1;            ///< geometry/element order (1 or 2)
   int refinements = 0;      ///< uniform refinements after meshing
   /// A user's tagged gmsh mesh instead of the parametric cap ("": the cap);
@@ -24,8 +27,9 @@ struct HalfCapSpec
   double nipple_z = 0;      ///< z of the nipple node (0, H, nipple_z) of a user mesh [m]
 
   bool operator==(const HalfCapSpec&) const = default;
-  /// Append geometry.R, geometry.H, geometry.mesh_size, geometry.order,
-  /// geometry.refinements, geometry.mesh_file (defaults: the initialisers above).
+  /// Append geometry.R, geometry.H, geometry.mesh_size, geometry.rim_size_ratio,
+  /// geometry.order, geometry.refinements, geometry.mesh_file (defaults: the
+  /// initialisers above).
   static void declare(std::vector<KeyInfo>& keys);
   static HalfCapSpec from(const Config& c);
   /// The nipple in the neutral state: (0, H, nipple_z).

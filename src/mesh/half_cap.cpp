@@ -7,6 +7,40 @@ namespace breastsim::meshes
 {
 double sphere_radius(double R, double H) { return (R * R + H * H) / (2 * H); }
 
+namespace
+{
+/// Element size h(d) = rim_size_ratio mesh_size at the base rim (the arc where
+/// skin meets base), growing linearly with the distance d to mesh_size at
+/// d = 2 mesh_size (gmsh Distance + Threshold fields).
+void grade_toward_rim(const HalfCapSpec& s, double tol)
+{
+  gmsh::vectorpair curves;
+  gmsh::model::getEntities(curves, 1);
+  std::vector<double> rim;
+  for (auto [d, t] : curves)
+  {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(d, t, x0, y0, z0, x1, y1, z1);
+    const bool in_base = std::abs(y1) < tol, on_symmetry = std::abs(x1) < tol;
+    const bool on_z0 = std::abs(z0) < tol && std::abs(z1) < tol;
+    if (in_base && !on_symmetry && !on_z0)
+      rim.push_back(t);
+  }
+  namespace field = gmsh::model::mesh::field;
+  const int distance = field::add("Distance");
+  field::setNumbers(distance, "CurvesList", rim);
+  field::setNumber(distance, "NumPointsPerCurve", 200);
+  const int threshold = field::add("Threshold");
+  field::setNumber(threshold, "InField", distance);
+  field::setNumber(threshold, "SizeMin", s.rim_size_ratio * s.mesh_size);
+  field::setNumber(threshold, "SizeMax", s.mesh_size);
+  field::setNumber(threshold, "DistMin", 0.0);
+  field::setNumber(threshold, "DistMax", 2 * s.mesh_size);
+  field::setAsBackgroundMesh(threshold);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+}
+} // namespace
+
 void build_half_cap_geometry(const HalfCapSpec& s, int tag_base, int tag_skin,
                              int tag_symmetry)
 {
@@ -61,7 +95,9 @@ void build_half_cap_geometry(const HalfCapSpec& s, int tag_base, int tag_skin,
   gmsh::model::addPhysicalGroup(2, skin, tag_skin);
   gmsh::model::addPhysicalGroup(2, sym, tag_symmetry);
 
-  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * s.mesh_size);
+  if (s.rim_size_ratio < 1)
+    grade_toward_rim(s, tol);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * s.rim_size_ratio * s.mesh_size);
   gmsh::option::setNumber("Mesh.MeshSizeMax", s.mesh_size);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay: deterministic
