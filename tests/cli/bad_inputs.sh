@@ -35,6 +35,8 @@ printf '[postures]\nnames = ["handstand"]\n' > posture.toml
 printf '[tissue]\nmu = "soft"\n' > type.toml
 printf '[solver]\nlinear = "magic"\n' > choice.toml
 printf '[geometry]\norder = 3\n' > order.toml
+printf '[geometry]\nrim_size_ratio = 0.05\n' > rim.toml
+printf '[chest_wall]\nk = -1.0\n' > wall.toml
 
 expect_error missing_file "does not exist" simulate "$work/nope.toml"
 expect_error bad_toml "not valid TOML" simulate bad.toml
@@ -48,6 +50,8 @@ expect_error unknown_posture "\"handstand\"" simulate posture.toml
 expect_error wrong_type "expected number" simulate type.toml
 expect_error bad_choice "key 'solver.linear'" simulate choice.toml
 expect_error bad_order "key 'geometry.order' = 3" simulate order.toml
+expect_error rim_grading "key 'geometry.rim_size_ratio' = 0.05" simulate rim.toml
+expect_error negative_wall "key 'chest_wall.k' = -1" simulate wall.toml
 expect_error bad_set "key 'tissue.lambda' = \"abc\" is not a number" simulate "$CASES/default.toml" --set tissue.lambda=abc
 expect_error set_unknown "unknown key 'tissue.nu'" simulate "$CASES/default.toml" --set tissue.nu=0.3
 expect_error set_syntax "--set expects key=value" simulate "$CASES/default.toml" --set tissue.mu
