@@ -8,6 +8,9 @@ candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
                                    A_skin(Z > 0) = pi Rs H / 2 (half of the half cap);
    - sharp core, u = e X (F = (1 + e) I): E = q W((1 + e) I) V_core,
      V_core the half cap's volume inside x^2 + z^2 < r_g^2 (gland_ellipsoid.core_volume);
+   - the truth's chest wall, u = (0, -d, 0): the skin below height d is
+     d - Y behind the chest; a band dY of the half cap's skin has the area
+     pi Rs dY, so E = K pi Rs d^3 / 6; in front of the chest (u_y > 0) 0;
    - tension-field skin (mu_s = lambda_s = q), E = t_s W A with W uniform:
      u = e X on the skin (equibiaxial, l1 = l2 = 1 + e, taut), A the skin's
      area; its density on the flat base (N = -e_y) under u = (F - I) X, F a
@@ -31,7 +34,7 @@ sys.path.insert(0, str(Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 
 import numpy as np  # noqa: E402
 
-from forms_truth import tissue  # noqa: E402
+from forms_truth import chest_contact, tissue  # noqa: E402
 from forms_truth.candidate_forms import CANDIDATE_FORMS, R_G, T_S  # noqa: E402
 from forms_truth.gland_ellipsoid import core_volume  # noqa: E402
 from pseudo_true import Fitter  # noqa: E402
@@ -75,6 +78,14 @@ def closed_forms(fitter):
     w = 500.0 / 2 * (3 * (1 + e) ** 2 - 3 - 2 * math.log((1 + e) ** 3)) + 2000.0 / 2 * ((1 + e) ** 3 - 1) ** 2
     # the cylinder cuts the cells: quadrature of the indicator (0.8 % at 14 mm)
     check("sharp core, uniform dilation", energy(ctx, core, lambda x: e * x), 0.8 * w * core_volume(R, H, R_G), 0.02)
+
+    wall = chest_contact.Term(ctx, 2e7)
+    d = 0.6 * H
+    down = lambda x: np.tile(np.array([0.0, -d, 0.0])[:, None], (1, x.shape[1]))
+    # the kink at Y = d crosses the curved P2 skin triangles: quadrature error O(h)
+    check("chest wall, skin behind it below 0.6 H", energy(ctx, wall, down), 2e7 * math.pi * RS * d ** 3 / 6, 0.01)
+    up = lambda x: np.tile(np.array([0.001, 0.0005, -0.002])[:, None], (1, x.shape[1]))
+    check("chest wall, skin in front of it", energy(ctx, wall, up) + 1.0, 1.0, 1e-15)
 
 
 def membrane_w(q, l1, l2):
