@@ -115,11 +115,10 @@ struct Search
   Config current;                          ///< the model, with the terms found so far
   std::vector<Free> frees;                 ///< its free parameters
   FitState state;                          ///< its fit
-  std::unique_ptr<FitState> fine_state;    ///< its fit on the finer mesh, if the refinement check made one
-  /// The current model (without the tested candidate) refitted on the finer
-  /// mesh by a refinement check of this round; reused by later checks and
-  /// by step 9 (reset when a term is added).
-  std::unique_ptr<FitState> fine_without;
+  /// Its fit on the finer mesh, once a refinement check has made one: the
+  /// check's refit of the current model, or of the candidate it accepted,
+  /// which then is the current model. Reused by later checks and by step 9.
+  std::unique_ptr<FitState> fine_state;
   int found = 0;                           ///< terms found so far
 };
 
@@ -200,10 +199,10 @@ std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vect
   Evidence& e = evidence_of(rd, rd.tested);
   const Config fine_base = finer(s.current, s.o.mesh_ratio);
   const Evaluate on_fine = [&](const Config& c) { return (*s.fine_ev)(c); };
-  if (!s.fine_without)
-    s.fine_without = std::make_unique<FitState>(gauss_newton_refit(
+  if (!s.fine_state)
+    s.fine_state = std::make_unique<FitState>(gauss_newton_refit(
         on_fine, fine_base, s.frees, s.state, "refinement check: current model on the finer mesh"));
-  const FitState& without = *s.fine_without;
+  const FitState& without = *s.fine_state;
   auto with = std::make_unique<FitState>(gauss_newton_refit(
       on_fine, fine_base, trial, rd.after, "refinement check: with " + e.candidate));
   e.refinement_checked = true;
@@ -351,8 +350,7 @@ bool discovery_round(Search& s, Diagnosis& d)
   s.frees = trial;
   s.current = rd.after.config; // the candidate term is on from now on
   s.state = rd.after;
-  s.fine_state = std::move(fine); // none: step 9 refits on the finer mesh
-  s.fine_without.reset();
+  s.fine_state = std::move(fine); // none (no refinement check): step 9 refits on the finer mesh
   return true;
 }
 
@@ -387,9 +385,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   // Step 9: the numerical uncertainty of the fitted values.
   if (s.fine_ev && !s.frees.empty())
   {
-    const FitState f = s.fine_state     ? *s.fine_state
-                       : s.fine_without ? *s.fine_without
-                                        : final_fit_on_finer_mesh(s, d.fit_only);
+    const FitState f = s.fine_state ? *s.fine_state : final_fit_on_finer_mesh(s, d.fit_only);
     d.se_statistical = f.uncertainty.se_log;
     d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.se_numerical);
   }
