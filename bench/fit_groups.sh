@@ -5,18 +5,24 @@
 #  - `diagnose` on independent-truth recordings of the issue-17 benchmark
 #    (4 postures x 2000 points; the control control_01;
 #    --fit mu,lambda: two columns, up to four candidate probes)
-# on 1 rank and on 2 ranks with --ranks-per-case 1 (each rank solves its
-# own Jacobian columns and probes; the other solves are replicated).
+# on 1 rank and on 2 ranks with --ranks-per-case 1 (calibrate: each rank
+# solves its own Jacobian columns, the other solves are replicated;
+# diagnose: each rank solves its own postures of every evaluation).
 # REPEATS times in turn (default 3); medians and the median of the ratios
 # against the 1-rank run of the same repetition.
-# Usage: bash bench/fit_groups.sh [BUILD_DIR] [REPEATS] [JOBS]
-#   JOBS: a subset of "calibrate control_01" (default both), quoted
+# Usage: bash bench/fit_groups.sh [BUILD_DIR] [REPEATS] [JOBS] [SET_DIR] [EXTRA]
+#   JOBS: "calibrate" and recording names of SET_DIR (default
+#   "calibrate control_01"), quoted; SET_DIR: a benchmark folder holding
+#   recordings/ (default bench/truth); EXTRA: further diagnose arguments, quoted
+#   (e.g. "--set terms.chest_wall=true --set geometry.rim_size_ratio=0.333").
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/.." && pwd)"
 bin="$(cd "${1:-$repo/build}" && pwd)/breastsim"
 repeats="${2:-3}"
 jobs="${3:-calibrate control_01}"
+set_dir="$(cd "${4:-$here/truth}" && pwd)"
+read -r -a extra <<<"${5:-}"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -25,8 +31,9 @@ printf '[tissue]\nmu = 300.0\n' >"$work/start.toml"
 cal=(calibrate "$work/m.json" --case "$work/start.toml" --fit mu,c,lambda --algorithm lbfgs
      --max-evals 30 --size 320x240)
 dia() { # RECORDING_NAME: the benchmark's diagnose arguments
-  echo diagnose "$here/truth/recordings/$1.json" --case "$repo/cases/default.toml" \
-    --set base.fixed=true --set terms.base_springs=false --set terms.skin=false --fit mu,lambda
+  echo diagnose "$set_dir/recordings/$1.json" --case "$repo/cases/default.toml" \
+    --set base.fixed=true --set terms.base_springs=false --set terms.skin=false --fit mu,lambda \
+    "${extra[@]}"
 }
 timed() { # OUT_NAME COMMAND...: wall seconds; a failed run stops the benchmark
   local name="$1" t0 t1; shift
@@ -53,8 +60,8 @@ done
 python3 - "$work/times" $jobs <<'PY'
 import statistics, sys
 rows = [list(map(float, l.split())) for l in open(sys.argv[1])]
-names = {"calibrate": "calibrate mu,c,lambda", "control_01": "diagnose control_01"}
-for k, job in enumerate(names[j] for j in sys.argv[2:]):
+names = {"calibrate": "calibrate mu,c,lambda"}
+for k, job in enumerate(names.get(j, "diagnose " + j) for j in sys.argv[2:]):
     s = statistics.median(r[2 * k] for r in rows)
     g = statistics.median(r[2 * k + 1] for r in rows)
     ratio = statistics.median(r[2 * k] / r[2 * k + 1] for r in rows)

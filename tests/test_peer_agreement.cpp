@@ -277,6 +277,8 @@ TEST(PeerAgreement, MeshFileKeysAreCheckedAtTheEdge)
   c.set_text("geometry.mesh_file", file.string());
   c.validate();
   EXPECT_NE(message("geometry.refinements", "1").find("geometry.refinements = 0"), std::string::npos);
+  EXPECT_NE(message("geometry.rim_size_ratio", "0.5").find("geometry.rim_size_ratio = 1"),
+            std::string::npos);
   try
   {
     HalfCapSpec::from(c).require_parametric_cap("surgery");

@@ -93,11 +93,9 @@ Config on_users_mesh(Config diagnosed, const Config& users)
 struct Search
 {
   Search(const Recording& r, const Config& c, const DiagnoseOptions& opt, MPI_Comm comm)
-      : rec(r), o(opt), groups(comm, opt.ranks_per_case, "--ranks-per-case"), lsq(opt.lsq),
+      : rec(r), o(opt), groups(comm, opt.ranks_per_case, "--ranks-per-case"),
         ev(r, groups.comm(), &groups), current(with_known(c, r, opt)), frees(frees_from_fit(o.fit, current))
   {
-    if (groups.groups() > 1)
-      lsq.groups = &groups;
     if (o.mesh_ratio > 1)
     {
       fine_ev = std::make_unique<PointEvaluator>(r, groups.comm(), &groups);
@@ -107,8 +105,7 @@ struct Search
 
   const Recording& rec;
   const DiagnoseOptions& o;
-  CaseGroups groups;   ///< independent solves over MPI sub-communicators (--ranks-per-case)
-  LsqOptions lsq;      ///< o.lsq, its Jacobian columns over `groups`
+  CaseGroups groups;   ///< the postures solved side by side (--ranks-per-case)
   PointEvaluator ev;   ///< on this rank's group
   std::unique_ptr<PointEvaluator> fine_ev; ///< the finer mesh of the noise floor (mesh_ratio > 1)
   double kappa = 0;                        ///< Richardson factor 1/(1 - 1/r)
@@ -126,13 +123,13 @@ struct Search
 /// the fit again with sigma_eff.
 void fit_current_model(Search& s, Diagnosis& d)
 {
-  s.state = fit(s.ev, s.current, s.frees, start_values(s.frees), s.lsq, "fit of the current model");
+  s.state = fit(s.ev, s.current, s.frees, start_values(s.frees), s.o.lsq, "fit of the current model");
   if (!s.fine_ev)
     return;
   const auto sigma = noise_floor(s.ev, *s.fine_ev, s.rec, s.state, s.o.mesh_ratio, d);
   s.ev.set_sigma(sigma);
   s.fine_ev->set_sigma(sigma);
-  s.state = fit(s.ev, s.current, s.frees, log_values(s.state), s.lsq, "fit of the current model");
+  s.state = fit(s.ev, s.current, s.frees, log_values(s.state), s.o.lsq, "fit of the current model");
 }
 
 /// Step 5: score every applicable candidate at its null value, with the share
@@ -153,11 +150,9 @@ std::size_t score_candidates(Search& s, Round& rd)
     if (c.applicable(s.state.config)
         && (wanted.empty() || std::find(wanted.begin(), wanted.end(), c.name) != wanted.end()))
       tested.push_back(&c);
-  // The probe solves are independent: one per case of the groups.
-  const auto probes = s.groups.map(tested.size(), [&](std::size_t k)
-                                   { return probe_residuals(s.ev, *tested[k], s.state); });
-  for (std::size_t k = 0; k < tested.size(); ++k)
-    rd.scores.push_back(score_from_probe(*tested[k], s.state, probes[k], mesh_e, s.kappa));
+  for (const Candidate* c : tested)
+    rd.scores.push_back(
+        score_from_probe(*c, s.state, probe_residuals(s.ev, *c, s.state), mesh_e, s.kappa));
   std::sort(rd.scores.begin(), rd.scores.end(),
             [](const auto& a, const auto& b) { return a.score > b.score; });
   return tested.size();
@@ -247,7 +242,7 @@ std::vector<Refit> refit_candidates(Search& s, Round& rd, double level)
     y.push_back(std::log(std::clamp(sc.estimate, cand.typical * 1e-3, cand.typical * 1e2)));
     try
     {
-      r.after = fit(s.ev, s.current, r.frees, y, s.lsq, "refit with " + cand.name);
+      r.after = fit(s.ev, s.current, r.frees, y, s.o.lsq, "refit with " + cand.name);
     }
     catch (const SolveError& err)
     {
@@ -360,7 +355,7 @@ FitState final_fit_on_finer_mesh(Search& s, bool fit_only)
 {
   const Config fine = finer(s.current, s.o.mesh_ratio);
   if (fit_only)
-    return fit(*s.fine_ev, fine, s.frees, log_values(s.state), s.lsq, "refit on the finer mesh");
+    return fit(*s.fine_ev, fine, s.frees, log_values(s.state), s.o.lsq, "refit on the finer mesh");
   const Evaluate on_fine = [&](const Config& c) { return (*s.fine_ev)(c); };
   return gauss_newton_refit(on_fine, fine, s.frees, s.state, "final model on the finer mesh");
 }

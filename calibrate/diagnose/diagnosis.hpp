@@ -71,8 +71,8 @@ struct DiagnoseOptions
   /// jackknife splits each posture's points into b x b patches (0: only
   /// the posture jackknife).
   int jackknife_patches = 3;
-  /// MPI ranks per forward solve: the Jacobian columns and candidate probes
-  /// are solved by groups of this many ranks side by side (0: all ranks).
+  /// MPI ranks per forward solve: the postures of every evaluation are
+  /// solved by groups of this many ranks side by side (0: all ranks).
   int ranks_per_case = 0;
   LsqOptions lsq;
 };

@@ -21,6 +21,12 @@ PointEvaluator::PointEvaluator(const Recording& rec, MPI_Comm comm, const CaseGr
 {
 }
 
+std::vector<nlohmann::json> PointEvaluator::surfaces(const Config& c)
+{
+  _posture_solves += static_cast<int>(_rec.postures.size());
+  return _forward.surfaces(c);
+}
+
 std::vector<double> PointEvaluator::distances(std::size_t i, const Model& model) const
 {
   int rank;
@@ -37,31 +43,60 @@ std::vector<double> PointEvaluator::distances(std::size_t i, const Model& model)
   return d;
 }
 
+std::vector<double> PointEvaluator::raw_residuals(const Config& c, PointEvaluation& e)
+{
+  const std::size_t np = _rec.postures.size();
+  // Posture i's part, "recording - model" [m]: its distances, then its landmark.
+  auto posture_raw = [&](std::size_t i, const Observables& obs)
+  {
+    std::vector<double> raw = e.distances[i];
+    if (const auto& n = _rec.postures[i].nipple)
+      for (int k = 0; k < 3; ++k)
+        raw.push_back((*n)[k] - obs.nipple[k]);
+    return raw;
+  };
+  auto visit = [&](std::size_t i, const Model& model) { e.distances[i] = distances(i, model); };
+  std::vector<std::vector<double>> parts(np);
+  if (_groups && _groups->groups() > 1)
+  {
+    _forward.prepare(c);
+    parts = _groups->map(np, [&](std::size_t i)
+                         { return posture_raw(i, _forward.solve_posture(i, c, visit)); });
+  }
+  else
+  {
+    const auto obs = _forward.solve(c, visit);
+    for (std::size_t i = 0; i < np; ++i)
+      parts[i] = posture_raw(i, obs[i]);
+  }
+  _posture_solves += static_cast<int>(np);
+  // All distances first, then the landmarks, posture by posture.
+  std::vector<double> raw, landmarks;
+  for (std::size_t i = 0; i < np; ++i)
+  {
+    const std::size_t n = _rec.postures[i].points.size();
+    raw.insert(raw.end(), parts[i].begin(), parts[i].begin() + static_cast<std::ptrdiff_t>(n));
+    landmarks.insert(landmarks.end(), parts[i].begin() + static_cast<std::ptrdiff_t>(n),
+                     parts[i].end());
+  }
+  raw.insert(raw.end(), landmarks.begin(), landmarks.end());
+  return raw;
+}
+
 PointEvaluation PointEvaluator::operator()(const Config& c)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::size_t np = _rec.postures.size();
   PointEvaluation e;
   e.distances.resize(np);
-  // Residuals "recording - model" [m]: the distances, then the landmarks.
-  auto solve_raw = [&]
-  {
-    auto visit = [&](std::size_t i, const Model& model) { e.distances[i] = distances(i, model); };
-    const auto obs = _forward.solve(c, visit);
-    std::vector<double> raw;
-    for (std::size_t i = 0; i < np; ++i)
-      raw.insert(raw.end(), e.distances[i].begin(), e.distances[i].end());
-    for (std::size_t i = 0; i < np; ++i)
-      if (const auto& n = _rec.postures[i].nipple)
-        for (int k = 0; k < 3; ++k)
-          raw.push_back((*n)[k] - obs[i].nipple[k]);
-    return raw;
-  };
-  const std::vector<double> raw = _groups ? _groups->replicate(solve_raw) : solve_raw();
+  const std::vector<double> raw = raw_residuals(c, e);
   std::size_t j = 0;
   for (std::size_t i = 0; i < np; ++i)
+  {
+    e.distances[i].resize(_rec.postures[i].points.size());
     for (auto& d : e.distances[i])
       d = raw[j++];
+  }
   for (std::size_t i = 0; i < np; ++i)
   {
     std::array<double, 3> err = {nan, nan, nan};

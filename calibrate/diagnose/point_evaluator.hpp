@@ -27,25 +27,32 @@ struct PointEvaluation
 class PointEvaluator
 {
 public:
-  /// On `comm`; with `groups` (comm = groups->comm()), every group solves
-  /// and all take the first group's evaluation (CaseGroups::replicate).
+  /// On `comm`; with `groups` of more than one (comm = groups->comm()), the
+  /// postures are solved side by side, posture i by group i mod groups
+  /// (always the same group, so each keeps its posture's warm start as in
+  /// serial), and every rank takes all of them (CaseGroups::map).
   PointEvaluator(const Recording& rec, MPI_Comm comm, const CaseGroups* groups = nullptr);
   /// Collective. The evaluation of case `c`; throws SolveError.
   PointEvaluation operator()(const Config& c);
 
-  int posture_solves() const { return _forward.posture_solves(); }
+  /// Posture solves of the evaluations so far, over all groups.
+  int posture_solves() const { return _posture_solves; }
   /// Skin surface documents of case `c` per posture (collective; rank 0).
-  std::vector<nlohmann::json> surfaces(const Config& c) { return _forward.surfaces(c); }
+  std::vector<nlohmann::json> surfaces(const Config& c);
   /// Standard deviation of each raw residual from now on [m] (default: the noise sigma).
   void set_sigma(std::vector<double> s) { _sigma = std::move(s); }
 
 private:
   std::vector<double> distances(std::size_t posture, const Model& model) const;
+  /// "recording - model" [m] of case `c`: the distances of every posture
+  /// (also kept in e.distances), then the landmarks. Throws SolveError.
+  std::vector<double> raw_residuals(const Config& c, PointEvaluation& e);
 
   const Recording& _rec;
   MPI_Comm _comm;
   const CaseGroups* _groups;
   ForwardModel _forward;
   std::vector<double> _sigma;
+  int _posture_solves = 0;
 };
 } // namespace breastsim::calibration

@@ -107,7 +107,7 @@ namespace
 class ScanMisfit
 {
 public:
-  ScanMisfit(const ScanCalibrationRequest& r, MPI_Comm comm) : _r(r), _comm(comm), mesh(&r.mesh)
+  ScanMisfit(const ScanCalibrationRequest& r, MPI_Comm comm) : mesh(&r.mesh), _r(r), _comm(comm)
   {
     for (const auto& p : r.parameters)
       names.push_back(p.name);

@@ -81,14 +81,14 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
       model.displacement()->x()->scatter_fwd();
       return true;
     };
-  const PostureResult r = solve_posture(m, *_newton, *_probe, _postures[i], c, guess);
+  const PostureResult r = breastsim::solve_posture(m, *_newton, *_probe, _postures[i], c, guess);
   if (r.converged_from_guess)
     ++_warm_starts;
   _last[i].assign(x.begin(), x.end());
   return r.observables;
 }
 
-std::vector<Observables> ForwardModel::solve(const Config& c, const PostureVisitor& visit)
+void ForwardModel::prepare(const Config& c)
 {
   const CaseOptions o = CaseOptions::from(c);
   const double R = o.geometry.R, H = o.geometry.H;
@@ -103,14 +103,23 @@ std::vector<Observables> ForwardModel::solve(const Config& c, const PostureVisit
     attach_solver(c);
   }
   apply_parameters(c, *_model);
+}
+
+Observables ForwardModel::solve_posture(std::size_t i, const Config& c, const PostureVisitor& visit)
+{
+  Observables obs = solve_one(i, c);
+  ++_posture_solves;
+  if (visit)
+    visit(i, *_model);
+  return obs;
+}
+
+std::vector<Observables> ForwardModel::solve(const Config& c, const PostureVisitor& visit)
+{
+  prepare(c);
   std::vector<Observables> obs;
   for (std::size_t i = 0; i < _postures.size(); ++i)
-  {
-    obs.push_back(solve_one(i, c));
-    ++_posture_solves;
-    if (visit)
-      visit(i, *_model);
-  }
+    obs.push_back(solve_posture(i, c, visit));
   return obs;
 }
 

@@ -30,6 +30,10 @@ public:
   /// Observables of each posture (in the order given) for case `c`.
   /// Throws SolveError if a posture cannot be solved.
   std::vector<Observables> solve(const Config& c, const PostureVisitor& visit = {});
+  /// The parts of solve: set up the mesh and the parameters of case `c`
+  /// (collective), then solve posture `i` alone (its own warm start).
+  void prepare(const Config& c);
+  Observables solve_posture(std::size_t i, const Config& c, const PostureVisitor& visit = {});
   /// Solve case `c` and return the skin surface document (surface_export.hpp)
   /// of each posture, for pictures. Collective; complete on rank 0.
   std::vector<nlohmann::json> surfaces(const Config& c);

@@ -269,6 +269,10 @@ void check_user_mesh_keys(const Config& c)
     throw InputError(fmt::format("key 'geometry.refinements' = {} with geometry.mesh_file: the user's "
                                  "mesh is used as it is; set geometry.refinements = 0",
                                  c.integer("geometry.refinements")));
+  if (c.number("geometry.rim_size_ratio") != 1.0)
+    throw InputError(fmt::format("key 'geometry.rim_size_ratio' = {} with geometry.mesh_file: the "
+                                 "user's mesh keeps its own sizes; set geometry.rim_size_ratio = 1",
+                                 c.number("geometry.rim_size_ratio")));
 }
 } // namespace
 

@@ -14,7 +14,8 @@ void HalfCapSpec::declare(std::vector<KeyInfo>& keys)
                             "target element size; between R/400 and min(R, H)/2", true));
   keys.push_back(number_key("geometry.rim_size_ratio", "1", d.rim_size_ratio, 0.1, 1.0,
                             "element size at the base rim (the inframammary fold) as a fraction of "
-                            "mesh_size, graded to mesh_size within 2 mesh_size of the rim; 1: uniform"));
+                            "mesh_size, graded to mesh_size within 2 mesh_size of the rim; 1: uniform "
+                            "(the parametric cap; the incision's remeshing is uniform)"));
   keys.push_back(integer_key("geometry.order", d.order, 1, 2, "element (and geometry) order: 1 = P1, 2 = P2"));
   keys.push_back(integer_key("geometry.refinements", d.refinements, 0, 4, "uniform refinements of the gmsh mesh"));
   KeyInfo file = text_key("geometry.mesh_file", d.mesh_file,

@@ -77,8 +77,8 @@ Command add_diagnose_command(CLI::App& root)
                 "do not require a gain in the prediction of held-out postures");
   app->add_option("--ranks-per-case", o->d.ranks_per_case,
                   "MPI ranks per forward solve: the ranks split into groups of this many, which "
-                  "solve the Jacobian columns and candidate probes side by side (0: all ranks on "
-                  "each solve; must divide the number of ranks)")
+                  "solve the postures of every evaluation side by side (0: all ranks on each "
+                  "solve; must divide the number of ranks)")
       ->capture_default_str();
   return {app, [o]()
           {
