@@ -140,6 +140,31 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   EXPECT_TRUE(e.failed.empty());
 }
 
+// A positive sum carried by one posture is not enough: the false skin of
+// base_springs_weak_3 (chest-wall set, graded mesh) improved 2 of 4.
+TEST(Evidence, HeldOutGainMustCoverMostPostures)
+{
+  DiagnoseOptions o;
+  Evidence e;
+  e.lr = 125.5;
+  e.critical = 13.9;
+  e.effect_rms_mm_all = e.effect_at_null_edge_mm = 0.068;
+  e.held_out_gain = {28.0, -30.2, -6.2, 196.3};
+  judge(e, o, 0.5e-3);
+  ASSERT_EQ(e.failed.size(), 1u);
+  EXPECT_NE(e.failed[0].find("only 2 of 4 held-out postures"), std::string::npos) << e.failed[0];
+  e.held_out_gain = {28.0, 30.2, -6.2, 196.3}; // 3 of 4
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty());
+  e.held_out_gain = {28.0, -6.2, 196.3}; // 2 of 3
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty());
+  o.held_out_check = false;
+  e.held_out_gain = {-28.0, -6.2, 196.3};
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty());
+}
+
 // d = r_B^2 - r_A^2 = (-1, -1, 1, 1): mean 0, sum of squares 4, so a margin
 // difference of 3 is z = 3 / 2.
 TEST(Separation, VuongZOfTwoFits)

@@ -73,10 +73,19 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
     e.failed.push_back(fmt::format("its 95 % interval reaches the null: at the interval's end the "
                                    "effect is {:.3f} mm, below {:.3f} mm",
                                    e.effect_at_null_edge_mm, min_mm));
+  // Held-out postures: the summed chi2 gain is positive, and so is the gain
+  // of more than half of the postures (one posture cannot carry a stand-in).
   const double gain = std::accumulate(e.held_out_gain.begin(), e.held_out_gain.end(), 0.0);
-  if (o.held_out_check && !e.held_out_gain.empty() && !(gain > 0))
+  const auto improved = std::count_if(e.held_out_gain.begin(), e.held_out_gain.end(),
+                                      [](double g) { return g > 0; });
+  const auto postures = static_cast<long>(e.held_out_gain.size());
+  if (o.held_out_check && postures > 0 && !(gain > 0))
     e.failed.push_back(fmt::format("it does not improve the prediction of held-out postures "
                                    "(chi2 gain {:.1f})", gain));
+  else if (o.held_out_check && postures > 0 && 2 * improved <= postures)
+    e.failed.push_back(fmt::format("it improves the prediction of only {} of {} held-out postures "
+                                   "(a term must improve more than half of them)",
+                                   improved, postures));
   // Model-form share: LR >= share (chi2 - dof) of the model before the term
   // (a stricter share after a term was found: its shape error is in that misfit).
   const double misfit_share = e.misfit_before > 0 ? e.lr / e.misfit_before : 1.0;
