@@ -9,6 +9,7 @@
 #include "fit_parameters.hpp"
 #include "fit_state.hpp"
 #include "geometry_options.hpp"
+#include "linearised_refit.hpp"
 #include "log.hpp"
 #include "mesh_error.hpp"
 #include "model_form.hpp"
@@ -117,6 +118,25 @@ struct Search
   /// which then is the current model. Reused by later checks and by step 9.
   std::unique_ptr<FitState> fine_state;
   int found = 0;                           ///< terms found so far
+
+  /// Some posture cannot be solved on the finer mesh (mesh_error.hpp).
+  bool finer_leaves_out() const
+  {
+    for (std::size_t p = 0; fine_ev && p < rec.postures.size(); ++p)
+      if (fine_ev->excluded(p))
+        return true;
+    return false;
+  }
+  /// chi2 of fit `f` over the postures the finer mesh solves.
+  double chi2_on_finer_postures(const FitState& f) const
+  {
+    const auto rows = rows_by_posture(f, rec);
+    double chi2 = 0;
+    for (std::size_t p = 0; p < rows.size(); ++p)
+      for (std::size_t i : rows[p])
+        chi2 += fine_ev->excluded(p) ? 0.0 : f.r[i] * f.r[i];
+    return chi2;
+  }
 };
 
 /// Steps 1-2: fit the current model; with a finer mesh, the noise floor and
@@ -143,6 +163,10 @@ std::size_t score_candidates(Search& s, Round& rd)
     const PointEvaluation ef = (*s.fine_ev)(finer(s.state.config, s.o.mesh_ratio));
     for (std::size_t i = 0; i < s.state.r.size(); ++i)
       mesh_e.push_back(s.state.r[i] - ef.r[i]);
+    const auto rows = rows_by_posture(s.state, s.rec);
+    for (std::size_t p = 0; p < rows.size(); ++p)
+      for (std::size_t i : rows[p])
+        mesh_e[i] *= ef.solved[p] ? 1.0 : 0.0; // unknown there: no allowance from it
   }
   const auto& wanted = s.o.candidates;
   std::vector<const Candidate*> tested;
@@ -202,7 +226,11 @@ std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vect
       on_fine, fine_base, trial, rd.after, "refinement check: with " + e.candidate));
   e.refinement_checked = true;
   e.lr_fine = without.chi2 - with->chi2;
-  e.lr_continuum = continuum_lr(e.lr, e.lr_fine, s.o.mesh_ratio, s.o.refinement_order);
+  // Extrapolated from the LR on the same postures on both meshes.
+  const double lr_h = s.finer_leaves_out()
+                          ? s.chi2_on_finer_postures(s.state) - s.chi2_on_finer_postures(rd.after)
+                          : e.lr;
+  e.lr_continuum = continuum_lr(lr_h, e.lr_fine, s.o.mesh_ratio, s.o.refinement_order);
   log::info("candidate '{}': LR {:.1f} on the finer mesh, {:.1f} in the continuum", e.candidate,
             e.lr_fine, e.lr_continuum);
   judge(e, s.o, s.rec.noise_sigma);
@@ -382,7 +410,8 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   {
     const FitState f = s.fine_state ? *s.fine_state : final_fit_on_finer_mesh(s, d.fit_only);
     d.se_statistical = f.uncertainty.se_log;
-    d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.se_numerical);
+    d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, !s.finer_leaves_out(),
+                                             d.se_numerical);
   }
   if (s.found > 0)
   {

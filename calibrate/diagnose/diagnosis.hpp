@@ -188,6 +188,10 @@ struct Diagnosis
   double noise_sigma = 0;
   std::vector<double> mesh_error;     ///< e_h per posture (distances) [m]
   std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
+  /// Postures the fitted current model cannot be solved in on the finer
+  /// mesh: their e_h is the largest of the others', the refinement checks
+  /// leave them out, and the final values are the diagnosis mesh's.
+  std::vector<std::string> unsolved_on_finer;
   int order = 1;                      ///< element order of the diagnosis mesh
   double mesh_size = 0;               ///< its mesh size [m] (0: a user's mesh file)
   double mesh_ratio = 0;              ///< the finer check mesh: mesh_size / mesh_ratio (<= 1: none)

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace breastsim::calibration
 {
@@ -58,6 +59,12 @@ nlohmann::json to_json(const FitState& s, const Recording& rec)
     j["postures"].push_back(q);
   }
   return j;
+}
+
+bool unsolved_on_finer(const Diagnosis& d, const std::string& posture)
+{
+  return std::find(d.unsolved_on_finer.begin(), d.unsolved_on_finer.end(), posture)
+         != d.unsolved_on_finer.end();
 }
 
 std::string fit_line(const FitState& s)
@@ -233,6 +240,7 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
     j["noise_floor"].push_back({{"posture", rec.postures[p].name},
                                 {"mesh_error_mm", 1e3 * d.mesh_error[p]},
                                 {"sigma_eff_mm", 1e3 * d.sigma_eff[p]}});
+  j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
   j["undecided"] = nlohmann::json::array();
@@ -306,8 +314,16 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
                                       : std::string());
   for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
     if (d.mesh_error[p] > 0)
-      s += fmt::format("  numerical noise floor {:<12} mesh error {:.3f} mm -> sigma_eff {:.3f} mm\n",
-                       rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p]);
+      s += fmt::format("  numerical noise floor {:<12} mesh error {:.3f} mm -> sigma_eff {:.3f} mm{}\n",
+                       rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p],
+                       unsolved_on_finer(d, rec.postures[p].name) ? " (not solved on the finer mesh: "
+                                                                    "the largest of the others')"
+                                                                  : "");
+  if (!d.unsolved_on_finer.empty())
+    s += fmt::format("  the fitted current model cannot be solved on the finer mesh in {}: the "
+                     "refinement checks compare the LR of the other postures, and the final values "
+                     "are the diagnosis mesh's\n",
+                     fmt::join(d.unsolved_on_finer, ", "));
   for (std::size_t k = 0; k < d.rounds.size(); ++k)
   {
     const Round& r = d.rounds[k];

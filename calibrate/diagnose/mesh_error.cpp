@@ -1,7 +1,10 @@
 #include "mesh_error.hpp"
 #include "geometry_options.hpp"
+#include "errors.hpp"
 #include "log.hpp"
+#include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
 namespace breastsim::calibration
 {
@@ -13,46 +16,90 @@ Config finer(const Config& c, double ratio)
   return f;
 }
 
+namespace
+{
+/// RMS difference of two posture's distance lists [m].
+double rms_change(const std::vector<double>& a, const std::vector<double>& b)
+{
+  double ss = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+    ss += std::pow(a[i] - b[i], 2);
+  return std::sqrt(ss / std::max<std::size_t>(a.size(), 1));
+}
+
+/// RMS change of a landmark over its three components [m].
+double landmark_change(const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+  return rms_change({a[0], a[1], a[2]}, {b[0], b[1], b[2]});
+}
+} // namespace
+
+bool fill_unsolved(std::vector<double>& floor, const std::vector<bool>& solved)
+{
+  double largest = -1;
+  for (std::size_t p = 0; p < floor.size(); ++p)
+    if (solved[p])
+      largest = std::max(largest, floor[p]);
+  for (std::size_t p = 0; p < floor.size(); ++p)
+    if (!solved[p])
+      floor[p] = std::max(largest, 0.0);
+  return largest >= 0;
+}
+
 std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, const Recording& rec,
                                 const FitState& state, double ratio, Diagnosis& d)
 {
   log::info("numerical noise floor: solving the fitted model on a mesh {:g} times finer", ratio);
-  const PointEvaluation ef = fine_ev(finer(state.config, ratio));
+  const PointEvaluation ef = fine_ev.try_each(finer(state.config, ratio));
   const PointEvaluation ec = ev(state.config);
+  const std::size_t np = rec.postures.size();
+  std::vector<double> landmark_error(np, 0.0);
+  std::vector<bool> landmark_solved(np, false);
+  for (std::size_t p = 0; p < np; ++p)
+    if (ef.solved[p])
+    {
+      d.mesh_error[p] = rms_change(ef.distances[p], ec.distances[p]);
+      landmark_solved[p] = rec.postures[p].nipple.has_value();
+      if (landmark_solved[p])
+        landmark_error[p] = landmark_change(ef.nipple_error[p], ec.nipple_error[p]);
+    }
+  if (!fill_unsolved(d.mesh_error, ef.solved))
+    throw SolveError(fmt::format("the fitted current model cannot be solved on the mesh {:g} times "
+                                 "finer in any posture, so it has no numerical noise floor "
+                                 "(--mesh-ratio 1 turns the floor off)", ratio));
+  fill_unsolved(landmark_error, landmark_solved);
+  for (std::size_t p = 0; p < np; ++p)
+    if (!ef.solved[p])
+    {
+      fine_ev.exclude(p); // no refinement check can use it
+      d.unsolved_on_finer.push_back(rec.postures[p].name);
+      log::warn("posture '{}': the fitted model cannot be solved on the finer mesh; its numerical "
+                "noise floor is the largest of the other postures', and the refinement checks "
+                "leave it out", rec.postures[p].name);
+    }
   std::vector<double> sigma;
-  std::size_t k = 0;
-  for (std::size_t p = 0; p < rec.postures.size(); ++p)
+  for (std::size_t p = 0; p < np; ++p)
   {
-    double ss = 0;
-    const std::size_t n = rec.postures[p].points.size();
-    for (std::size_t i = 0; i < n; ++i, ++k)
-      ss += std::pow(ef.raw[k] - ec.raw[k], 2);
-    d.mesh_error[p] = std::sqrt(ss / n);
     d.sigma_eff[p] = std::hypot(rec.noise_sigma, d.mesh_error[p]);
-    sigma.insert(sigma.end(), n, d.sigma_eff[p]);
+    sigma.insert(sigma.end(), rec.postures[p].points.size(), d.sigma_eff[p]);
     log::info("numerical noise floor of posture '{}': {:.3f} mm (sigma_eff {:.3f} mm)",
               rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p]);
   }
-  for (const auto& P : rec.postures)
-    if (P.nipple)
-    {
-      double ss = 0;
-      for (int c = 0; c < 3; ++c, ++k)
-        ss += std::pow(ef.raw[k] - ec.raw[k], 2);
-      sigma.insert(sigma.end(), 3, std::hypot(rec.noise_sigma, std::sqrt(ss / 3)));
-    }
+  for (std::size_t p = 0; p < np; ++p)
+    if (rec.postures[p].nipple)
+      sigma.insert(sigma.end(), 3, std::hypot(rec.noise_sigma, landmark_error[p]));
   return sigma;
 }
 
 FitState with_numerical_uncertainty(const FitState& coarse, const FitState& fine, double ratio,
-                                    std::vector<double>& se_numerical)
+                                    bool values_from_fine, std::vector<double>& se_numerical)
 {
-  FitState f = fine;
+  FitState f = values_from_fine ? fine : coarse;
   f.config.set("geometry.mesh_size", HalfCapSpec::from(coarse.config).mesh_size); // the user's mesh
   auto& u = f.uncertainty;
-  for (std::size_t i = 0; i < f.values.size() && i < u.se_log.size(); ++i)
+  for (std::size_t i = 0; i < f.values.size() && i < u.se_log.size() && i < fine.values.size(); ++i)
   {
-    const double se_num = std::abs(std::log(f.values[i] / coarse.values[i])) / (ratio - 1);
+    const double se_num = std::abs(std::log(fine.values[i] / coarse.values[i])) / (ratio - 1);
     se_numerical.push_back(se_num);
     widen_interval(u, i, f.values[i], se_num);
   }

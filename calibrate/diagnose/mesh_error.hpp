@@ -11,16 +11,23 @@ namespace breastsim::calibration
 /// Case `c` on a mesh `ratio` times finer (validated).
 Config finer(const Config& c, double ratio);
 
+/// Per-posture floors of which only the `solved` ones were measured: each
+/// other takes the largest measured one. False if none was measured.
+bool fill_unsolved(std::vector<double>& floor, const std::vector<bool>& solved);
+
 /// Numerical noise floor of the diagnosis mesh at the fitted state: the RMS
 /// change e_h of each posture's distances (and of each landmark) on a mesh
 /// `ratio` times finer; sigma_eff^2 = sigma^2 + e_h^2 per residual (returned)
-/// and per posture (d.mesh_error, d.sigma_eff).
+/// and per posture (d.mesh_error, d.sigma_eff). A posture the finer mesh
+/// cannot solve takes the largest e_h of the others and is excluded from
+/// fine_ev (d.unsolved_on_finer); throws SolveError if none solves.
 std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, const Recording& rec,
                                 const FitState& state, double ratio, Diagnosis& d);
 
-/// Values and intervals of a found model on the finer mesh, with the
-/// numerical part |ln p_h - ln p_{h/r}| / (r - 1) (Richardson, order 1)
-/// added in quadrature to the statistical SE of ln p.
+/// Values and intervals of a found model: the finer mesh's values (else the
+/// diagnosis mesh's) with the numerical part |ln p_h - ln p_{h/r}| / (r - 1)
+/// (Richardson, order 1) added in quadrature to the statistical SE of ln p.
+/// The diagnosis mesh's values are kept when the finer fit left postures out.
 FitState with_numerical_uncertainty(const FitState& coarse, const FitState& fine, double ratio,
-                                    std::vector<double>& se_numerical);
+                                    bool values_from_fine, std::vector<double>& se_numerical);
 } // namespace breastsim::calibration

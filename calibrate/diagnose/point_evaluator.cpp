@@ -1,6 +1,9 @@
 #include "point_evaluator.hpp"
 #include "surface_distance.hpp"
 #include "surface_export.hpp"
+#include "errors.hpp"
+#include "log.hpp"
+#include <cmath>
 #include <limits>
 
 namespace breastsim::calibration
@@ -17,7 +20,8 @@ std::vector<Posture> postures(const Recording& rec)
 } // namespace
 
 PointEvaluator::PointEvaluator(const Recording& rec, MPI_Comm comm, const CaseGroups* groups)
-    : _rec(rec), _comm(comm), _groups(groups), _forward(postures(rec), comm)
+    : _rec(rec), _comm(comm), _groups(groups), _forward(postures(rec), comm),
+      _excluded(rec.postures.size(), false)
 {
 }
 
@@ -43,71 +47,85 @@ std::vector<double> PointEvaluator::distances(std::size_t i, const Model& model)
   return d;
 }
 
-std::vector<double> PointEvaluator::raw_residuals(const Config& c, PointEvaluation& e)
+std::vector<double> PointEvaluator::posture_part(std::size_t i, const Config& c)
+{
+  const auto& posture = _rec.postures[i];
+  const std::vector<double> unsolved(posture.points.size() + (posture.nipple ? 3 : 0),
+                                     std::numeric_limits<double>::quiet_NaN());
+  if (_excluded[i])
+    return unsolved;
+  std::vector<double> part;
+  try
+  {
+    const Observables obs = _forward.solve_posture(
+        i, c, [&](std::size_t, const Model& model) { part = distances(i, model); });
+    if (const auto& n = posture.nipple)
+      for (int k = 0; k < 3; ++k)
+        part.push_back((*n)[k] - obs.nipple[k]);
+  }
+  catch (const SolveError& err)
+  {
+    if (!_tolerant)
+      throw;
+    log::warn("posture '{}' not solved: {}", posture.name, err.what());
+    return unsolved;
+  }
+  return part;
+}
+
+std::vector<std::vector<double>> PointEvaluator::parts(const Config& c)
 {
   const std::size_t np = _rec.postures.size();
-  // Posture i's part, "recording - model" [m]: its distances, then its landmark.
-  auto posture_raw = [&](std::size_t i, const Observables& obs)
-  {
-    std::vector<double> raw = e.distances[i];
-    if (const auto& n = _rec.postures[i].nipple)
-      for (int k = 0; k < 3; ++k)
-        raw.push_back((*n)[k] - obs.nipple[k]);
-    return raw;
-  };
-  auto visit = [&](std::size_t i, const Model& model) { e.distances[i] = distances(i, model); };
-  std::vector<std::vector<double>> parts(np);
+  _forward.prepare(c);
+  const auto part = [&](std::size_t i) { return posture_part(i, c); };
   if (_groups && _groups->groups() > 1)
-  {
-    _forward.prepare(c);
-    parts = _groups->map(np, [&](std::size_t i)
-                         { return posture_raw(i, _forward.solve_posture(i, c, visit)); });
-  }
-  else
-  {
-    const auto obs = _forward.solve(c, visit);
-    for (std::size_t i = 0; i < np; ++i)
-      parts[i] = posture_raw(i, obs[i]);
-  }
-  _posture_solves += static_cast<int>(np);
-  // All distances first, then the landmarks, posture by posture.
-  std::vector<double> raw, landmarks;
+    return _groups->map(np, part);
+  std::vector<std::vector<double>> out;
   for (std::size_t i = 0; i < np; ++i)
-  {
-    const std::size_t n = _rec.postures[i].points.size();
-    raw.insert(raw.end(), parts[i].begin(), parts[i].begin() + static_cast<std::ptrdiff_t>(n));
-    landmarks.insert(landmarks.end(), parts[i].begin() + static_cast<std::ptrdiff_t>(n),
-                     parts[i].end());
-  }
-  raw.insert(raw.end(), landmarks.begin(), landmarks.end());
-  return raw;
+    out.push_back(part(i));
+  return out;
 }
 
 PointEvaluation PointEvaluator::operator()(const Config& c)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::size_t np = _rec.postures.size();
+  const auto all = parts(c);
   PointEvaluation e;
-  e.distances.resize(np);
-  const std::vector<double> raw = raw_residuals(c, e);
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < np; ++i)
+  std::vector<double> landmarks;
+  for (std::size_t i = 0; i < all.size(); ++i)
   {
-    e.distances[i].resize(_rec.postures[i].points.size());
-    for (auto& d : e.distances[i])
-      d = raw[j++];
-  }
-  for (std::size_t i = 0; i < np; ++i)
-  {
+    const auto& posture = _rec.postures[i];
+    const auto n = static_cast<std::ptrdiff_t>(posture.points.size());
+    const bool solved = all[i].empty() || !std::isnan(all[i][0]);
+    const std::vector<double> part = solved ? all[i] : std::vector<double>(all[i].size(), 0.0);
+    e.solved.push_back(solved);
+    e.distances.emplace_back(part.begin(), part.begin() + n);
+    e.raw.insert(e.raw.end(), part.begin(), part.begin() + n);
     std::array<double, 3> err = {nan, nan, nan};
-    if (_rec.postures[i].nipple)
+    if (posture.nipple)
       for (int k = 0; k < 3; ++k)
-        err[k] = -raw[j++]; // model - landmark
+      {
+        err[k] = -part[n + k]; // model - landmark
+        landmarks.push_back(part[n + k]);
+      }
     e.nipple_error.push_back(err);
+    _posture_solves += _excluded[i] ? 0 : 1;
   }
-  e.raw = raw;
-  for (std::size_t k = 0; k < raw.size(); ++k)
-    e.r.push_back(raw[k] / (_sigma.empty() ? _rec.noise_sigma : _sigma[k]));
+  // "recording - model": all distances first, then the landmarks.
+  e.raw.insert(e.raw.end(), landmarks.begin(), landmarks.end());
+  for (std::size_t k = 0; k < e.raw.size(); ++k)
+    e.r.push_back(e.raw[k] / (_sigma.empty() ? _rec.noise_sigma : _sigma[k]));
   return e;
+}
+
+PointEvaluation PointEvaluator::try_each(const Config& c)
+{
+  struct Tolerant
+  {
+    bool& flag;
+    explicit Tolerant(bool& f) : flag(f) { flag = true; }
+    ~Tolerant() { flag = false; }
+  } tolerant(_tolerant);
+  return (*this)(c);
 }
 } // namespace breastsim::calibration

@@ -22,6 +22,9 @@ struct PointEvaluation
   std::vector<std::array<double, 3>> nipple_error; ///< per posture, model - landmark [m] (NaN: none)
   std::vector<double> raw; ///< recording - model [m] (distances, then landmarks)
   std::vector<double> r;   ///< raw / sigma
+  /// Per posture: solved (false: excluded or, in try_each, failed; its
+  /// distances, landmark errors, raw and r are then 0).
+  std::vector<bool> solved;
 };
 
 class PointEvaluator
@@ -34,6 +37,13 @@ public:
   PointEvaluator(const Recording& rec, MPI_Comm comm, const CaseGroups* groups = nullptr);
   /// Collective. The evaluation of case `c`; throws SolveError.
   PointEvaluation operator()(const Config& c);
+  /// Collective. As operator(), but a posture whose solve fails is marked
+  /// unsolved (PointEvaluation::solved) instead of throwing.
+  PointEvaluation try_each(const Config& c);
+  /// Leave posture `i` out of every later evaluation (not solved; its
+  /// residuals 0, so it adds nothing to chi2 or to a Jacobian).
+  void exclude(std::size_t i) { _excluded.at(i) = true; }
+  bool excluded(std::size_t i) const { return _excluded.at(i); }
 
   /// Posture solves of the evaluations so far, over all groups.
   int posture_solves() const { return _posture_solves; }
@@ -44,15 +54,20 @@ public:
 
 private:
   std::vector<double> distances(std::size_t posture, const Model& model) const;
-  /// "recording - model" [m] of case `c`: the distances of every posture
-  /// (also kept in e.distances), then the landmarks. Throws SolveError.
-  std::vector<double> raw_residuals(const Config& c, PointEvaluation& e);
+  /// Posture i's "recording - model" [m] at the prepared case `c`: its
+  /// distances, then its landmark; all NaN when it is excluded or (with
+  /// _tolerant) its solve fails. Throws SolveError.
+  std::vector<double> posture_part(std::size_t i, const Config& c);
+  /// Every posture's part, each solved by its group (CaseGroups::map).
+  std::vector<std::vector<double>> parts(const Config& c);
 
   const Recording& _rec;
   MPI_Comm _comm;
   const CaseGroups* _groups;
   ForwardModel _forward;
   std::vector<double> _sigma;
+  std::vector<bool> _excluded;
+  bool _tolerant = false; ///< inside try_each
   int _posture_solves = 0;
 };
 } // namespace breastsim::calibration

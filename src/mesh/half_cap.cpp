@@ -9,6 +9,20 @@ double sphere_radius(double R, double H) { return (R * R + H * H) / (2 * H); }
 
 namespace
 {
+/// Which of the planes y = 0 (base), x = 0 (symmetry) and z = 0 (the two
+/// halves' interface) a gmsh entity lies in, by its bounding box (OCC pads
+/// boxes by the geometric tolerance, ~1e-7 m; `tol` is larger).
+struct Planes
+{
+  bool base, symmetry, interface;
+};
+Planes planes_of(int dim, int tag, double tol)
+{
+  double x0, y0, z0, x1, y1, z1;
+  gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
+  return {std::abs(y1) < tol, std::abs(x1) < tol, std::abs(z0) < tol && std::abs(z1) < tol};
+}
+
 /// Element size h(d) = rim_size_ratio mesh_size at the base rim (the arc where
 /// skin meets base), growing linearly with the distance d to mesh_size at
 /// d = 2 mesh_size (gmsh Distance + Threshold fields).
@@ -18,14 +32,8 @@ void grade_toward_rim(const HalfCapSpec& s, double tol)
   gmsh::model::getEntities(curves, 1);
   std::vector<double> rim;
   for (auto [d, t] : curves)
-  {
-    double x0, y0, z0, x1, y1, z1;
-    gmsh::model::getBoundingBox(d, t, x0, y0, z0, x1, y1, z1);
-    const bool in_base = std::abs(y1) < tol, on_symmetry = std::abs(x1) < tol;
-    const bool on_z0 = std::abs(z0) < tol && std::abs(z1) < tol;
-    if (in_base && !on_symmetry && !on_z0)
+    if (const Planes p = planes_of(d, t, tol); p.base && !p.symmetry && !p.interface)
       rim.push_back(t);
-  }
   namespace field = gmsh::model::mesh::field;
   const int distance = field::add("Distance");
   field::setNumbers(distance, "CurvesList", rim);
@@ -72,22 +80,18 @@ void build_half_cap_geometry(const HalfCapSpec& s, int tag_base, int tag_skin,
   for (auto [d, t] : ents)
     vols.push_back(t);
   gmsh::model::getEntities(ents, 2);
-  // Classify by bounding box (OCC boxes are padded by the geometric
-  // tolerance, ~1e-7 m): planar faces y = 0, x = 0, z = 0 and the sphere.
-  // The tolerance scales with the geometry, not the mesh: with 1e-4 h a
+  // Classify by bounding box: planar faces y = 0, x = 0, z = 0 and the
+  // sphere. The tolerance scales with the geometry, not the mesh: with 1e-4 h a
   // 1 mm mesh took the padded z = 0 interface for skin.
   const double tol = 1e-3 * std::min(s.R, s.H);
   for (auto [d, t] : ents)
   {
-    double x0, y0, z0, x1, y1, z1;
-    gmsh::model::getBoundingBox(d, t, x0, y0, z0, x1, y1, z1);
-    if (std::abs(y1) < tol)
+    const Planes p = planes_of(d, t, tol);
+    if (p.base)
       base.push_back(t);
-    else if (std::abs(x1) < tol)
+    else if (p.symmetry)
       sym.push_back(t);
-    else if (std::abs(z0) < tol && std::abs(z1) < tol)
-      continue; // internal interface z = 0
-    else
+    else if (!p.interface) // z = 0: the halves' internal interface
       skin.push_back(t);
   }
   gmsh::model::addPhysicalGroup(3, vols, 1);

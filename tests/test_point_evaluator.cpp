@@ -1,0 +1,102 @@
+// The forward map of a diagnosis (point_evaluator.hpp): a posture left out
+// adds nothing, a posture that cannot be solved is marked, not thrown, and
+// its noise floor is the largest measured one (mesh_error.hpp).
+#include "errors.hpp"
+#include "fixtures.hpp"
+#include "mesh_error.hpp"
+#include "point_evaluator.hpp"
+#include "recording.hpp"
+#include <gtest/gtest.h>
+
+using namespace breastsim;
+using namespace breastsim::calibration;
+
+namespace
+{
+/// Standing and supine, 12 points each in front of the chest, a nipple landmark.
+Recording standing_and_supine()
+{
+  Recording rec;
+  rec.noise_sigma = 5e-4;
+  for (const auto& [name, theta] : {std::pair{"standing", 0.0}, std::pair{"supine", 90.0}})
+  {
+    RecordedPosture p{name, theta, {}, Point{0.0, 0.04, -0.01}};
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 4; ++k)
+        p.points.push_back({0.015 * i, 0.03, -0.045 + 0.03 * k});
+    rec.postures.push_back(p);
+  }
+  return rec;
+}
+
+/// A tissue far too soft for its load (tests/test_physics.cpp): standing fails.
+Config too_soft()
+{
+  Config c = fixtures::coarse_case();
+  c.set("tissue.mu", 1.0);
+  c.set("tissue.lambda", 1.0);
+  c.set("skin.thickness", 0.0);
+  c.set("base.c", 1.0);
+  c.set("solver.min_load_step", 1.0 / 16);
+  c.validate();
+  return c;
+}
+} // namespace
+
+TEST(PointEvaluator, ExcludedPostureIsNotSolvedAndAddsNothing)
+{
+  const Recording rec = standing_and_supine();
+  const Config c = fixtures::coarse_case();
+  PointEvaluator ev(rec, MPI_COMM_WORLD);
+  const PointEvaluation all = ev(c);
+  ASSERT_EQ(all.solved, (std::vector<bool>{true, true}));
+  ASSERT_EQ(all.r.size(), 2 * 12 + 2 * 3u);
+  EXPECT_EQ(ev.posture_solves(), 2);
+  EXPECT_GT(std::abs(all.distances[1][0]), 1e-6);
+
+  ev.exclude(1);
+  EXPECT_TRUE(ev.excluded(1));
+  const PointEvaluation one = ev(c);
+  EXPECT_EQ(one.solved, (std::vector<bool>{true, false}));
+  EXPECT_EQ(ev.posture_solves(), 3); // only standing solved again
+  for (std::size_t i = 0; i < 12; ++i)
+  {
+    EXPECT_NEAR(one.distances[0][i], all.distances[0][i], 1e-9);
+    EXPECT_EQ(one.distances[1][i], 0.0);
+    EXPECT_EQ(one.r[12 + i], 0.0); // posture 1's rows, after posture 0's
+  }
+  // Landmarks after all distances: standing's kept, supine's 0.
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_NEAR(one.raw[24 + k], all.raw[24 + k], 1e-9);
+    EXPECT_EQ(one.raw[27 + k], 0.0);
+    EXPECT_EQ(one.nipple_error[1][k], 0.0);
+  }
+}
+
+TEST(PointEvaluator, TryEachMarksAPostureThatFailsInsteadOfThrowing)
+{
+  const Recording rec = standing_and_supine();
+  PointEvaluator ev(rec, MPI_COMM_WORLD);
+  EXPECT_THROW(ev(too_soft()), SolveError);
+  const PointEvaluation e = ev.try_each(too_soft());
+  ASSERT_EQ(e.solved.size(), 2u);
+  EXPECT_FALSE(e.solved[0]);
+  ASSERT_EQ(e.r.size(), 2 * 12 + 2 * 3u);
+  for (std::size_t i = 0; i < 12; ++i)
+    EXPECT_EQ(e.r[i], 0.0);
+  // Tolerance ends with try_each: a normal evaluation throws again.
+  EXPECT_THROW(ev(too_soft()), SolveError);
+  // And the evaluator still solves a solvable case afterwards.
+  const PointEvaluation ok = ev.try_each(fixtures::coarse_case());
+  EXPECT_EQ(ok.solved, (std::vector<bool>{true, true}));
+}
+
+TEST(PointEvaluator, UnsolvedPostureTakesTheLargestMeasuredFloor)
+{
+  std::vector<double> floor = {1e-4, 0.0, 3e-4, 0.0};
+  EXPECT_TRUE(fill_unsolved(floor, {true, false, true, false}));
+  EXPECT_EQ(floor, (std::vector<double>{1e-4, 3e-4, 3e-4, 3e-4}));
+  std::vector<double> none = {0.0, 0.0};
+  EXPECT_FALSE(fill_unsolved(none, {false, false}));
+}
