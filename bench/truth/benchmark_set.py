@@ -64,11 +64,14 @@ def _common(index):
 
 
 def recordings(which="main"):
-    """The benchmark ("main", 42 recordings) or the validation set
+    """The benchmark ("main", 42 recordings), the validation set
     ("validation", 12 recordings: new shapes, seeds and materials, made after
-    the rules' thresholds were chosen on the main set)."""
+    the rules' thresholds were chosen on the main set) or the hold-out set
+    ("holdout", 12: made after the validation set's verdicts were seen)."""
     if which == "validation":
         return validation_recordings()
+    if which == "holdout":
+        return holdout_recordings()
     out = []
 
     def add(name, cls, effects):
@@ -115,4 +118,29 @@ def validation_recordings():
     for k, (a, b) in enumerate(PAIRS[:2], start=1):
         effects = [(BY_CANDIDATE[c], _pattern(BY_CANDIDATE[c], [37, k, j], 4)) for j, c in enumerate((a, b))]
         add(f"val_pair_{a}__{b}", "pair", effects)
+    return out
+
+
+HOLDOUT_OFFSET = 80  # material/posture cycle and seeds 1780+: none shared with the other sets
+
+
+def holdout_recordings():
+    """4 controls and, per candidate, two new shapes at the weak strength:
+    the recordings on which the effect-size threshold decides (made after
+    the main and validation sets' evidence was seen, to test a change of
+    that threshold out of sample)."""
+    out = []
+
+    def add(name, cls, effects):
+        rec = {"name": name, "strength_class": cls, "effects": effects,
+               "target_peak_mm": TARGET_MM.get(cls)}
+        rec.update(_common(HOLDOUT_OFFSET + len(out)))
+        out.append(rec)
+
+    for i in range(1, 5):
+        add(f"hold_control_{i:02d}", "control", [])
+    for cand, effect in sorted(BY_CANDIDATE.items()):
+        for k in (1, 2):
+            pattern = _pattern(effect, [41, len(cand), ord(cand[0]), k], 1 + k)
+            add(f"hold_{cand}_weak_{k}", "weak", [(effect, pattern)])
     return out

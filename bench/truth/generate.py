@@ -59,7 +59,7 @@ def parse_args():
                     help="generate only these recordings (repeatable, comma-separated)")
     ap.add_argument("--redo", action="store_true", help="regenerate existing recordings too")
     ap.add_argument("--out", default=None, help="folder of recordings/ and manifest.json "
-                                                 "(default: bench/truth, or bench/truth/validation)")
+                                                 "(default: bench/truth, bench/truth/validation or bench/truth/holdout)")
     ap.add_argument("--mesh-size", type=float, default=0.006, help="truth mesh size [m] (P2)")
     ap.add_argument("--rim-size", type=float, default=None,
                     help="element size at the base rim [m], graded to --mesh-size (default: uniform)")
@@ -67,9 +67,9 @@ def parse_args():
                     help="the chest wall as a contact penalty of stiffness K [Pa/m] on the skin "
                          "(forms_truth/chest_contact.py; default: no chest wall)")
     ap.add_argument("--points", type=int, default=2000, help="skin points per posture")
-    ap.add_argument("--set", dest="which", choices=["main", "validation"], default="main",
-                    help="the benchmark (main, into --out) or the validation set "
-                         "(default --out: bench/truth/validation)")
+    ap.add_argument("--set", dest="which", choices=["main", "validation", "holdout"], default="main",
+                    help="the benchmark (main), the validation set or the hold-out set "
+                         "(default --out: bench/truth, bench/truth/validation, bench/truth/holdout)")
     a = ap.parse_args()
     a.only = [n for item in a.only for n in item.split(",") if n]
     if a.points < 10:
@@ -244,7 +244,7 @@ def status(out, manifest, spec):
 
 def main():
     a = parse_args()
-    out = Path(a.out) if a.out else (HERE if a.which == "main" else HERE / "validation")
+    out = Path(a.out) if a.out else (HERE if a.which == "main" else HERE / a.which)
     (out / "recordings").mkdir(parents=True, exist_ok=True)
     specs = benchmark_set.recordings(a.which)
     known = {s["name"] for s in specs}

@@ -189,7 +189,7 @@ def material_fixed_values(stored):
 
 def parse_args():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--set", dest="which", choices=["main", "validation"], default="main")
+    ap.add_argument("--set", dest="which", choices=["main", "validation", "holdout"], default="main")
     ap.add_argument("--only", default="", help="recording names (comma-separated; computed in this order)")
     ap.add_argument("--redo", action="store_true", help="recompute existing entries")
     ap.add_argument("--folder", default=None, help="folder of manifest.json (default: by --set)")
@@ -200,7 +200,7 @@ def parse_args():
 
 def main():
     a = parse_args()
-    folder = Path(a.folder) if a.folder else (HERE if a.which == "main" else HERE / "validation")
+    folder = Path(a.folder) if a.folder else (HERE if a.which == "main" else HERE / a.which)
     manifest = read_manifest(folder / "manifest.json")
     if manifest is None:
         sys.exit(f"pseudo_true.py: no manifest in {folder}")

@@ -1,0 +1,40 @@
+#!/usr/bin/python3
+"""The three independent-truth benchmark sets (bench/truth/benchmark_set.py)
+share no recording name and no noise seed, and have the documented sizes:
+main 42 (14 controls), validation 12 (2 controls), holdout 12 (4 controls,
+two weak shapes per candidate); every lambda/mu of each set is in [2, 10].
+
+Run: /usr/bin/python3 tests/truth/test_benchmark_sets.py SOURCE_DIR
+"""
+import sys
+from collections import Counter
+from pathlib import Path
+
+sys.path.insert(0, str(Path(sys.argv[1]) / "bench" / "truth"))
+import benchmark_set  # noqa: E402
+
+SIZES = {"main": (42, 14), "validation": (12, 2), "holdout": (12, 4)}
+
+
+def main():
+    names, seeds = Counter(), Counter()
+    for which, (size, controls) in SIZES.items():
+        recs = benchmark_set.recordings(which)
+        assert len(recs) == size, f"{which}: {len(recs)} recordings, expected {size}"
+        n_controls = sum(r["strength_class"] == "control" for r in recs)
+        assert n_controls == controls, f"{which}: {n_controls} controls, expected {controls}"
+        for r in recs:
+            names[r["name"]] += 1
+            seeds[r["seed"]] += 1
+            ratio = r["material"]["lambda"] / r["material"]["mu"]
+            assert 2.0 <= ratio <= 10.0, f"{r['name']}: lambda/mu {ratio}"
+    hold = benchmark_set.recordings("holdout")
+    per_candidate = Counter(r["name"].rsplit("_weak_", 1)[0] for r in hold if r["strength_class"] == "weak")
+    assert sorted(per_candidate.values()) == [2, 2, 2, 2], per_candidate
+    shared = [n for n, k in names.items() if k > 1] + [s for s, k in seeds.items() if k > 1]
+    assert not shared, f"shared between sets: {shared}"
+    print("benchmark sets: OK")
+
+
+if __name__ == "__main__":
+    main()
