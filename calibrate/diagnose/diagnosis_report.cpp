@@ -353,7 +353,8 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
     s += candidates_text(r, rec);
   }
   if (!d.se_numerical.empty())
-    s += fmt::format("\nFinal fit on the finer check mesh (numerical{} uncertainty included): {}\n",
+    s += fmt::format("\nFinal fit on the {} (numerical{} uncertainty included): {}\n",
+                     d.unsolved_on_finer.empty() ? "finer check mesh" : "diagnosis mesh",
                      d.se_model_form.empty() ? "" : " and model-form", fit_line(d.final_fit));
   for (std::size_t i = 0; i < d.se_model_form.size() && i < d.final_fit.names.size(); ++i)
     s += fmt::format("  {}: SE of ln p statistical {:.3f}, numerical {:.3f}, model-form {:.3f} (the "
