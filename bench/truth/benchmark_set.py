@@ -73,12 +73,7 @@ def recordings(which="main"):
     if which == "holdout":
         return holdout_recordings()
     out = []
-
-    def add(name, cls, effects):
-        rec = {"name": name, "strength_class": cls, "effects": effects,
-               "target_peak_mm": TARGET_MM.get(cls)}
-        rec.update(_common(len(out)))
-        out.append(rec)
+    add = _adder(out, 0)
 
     for i in range(1, N_CONTROLS + 1):
         add(f"control_{i:02d}", "control", [])
@@ -96,18 +91,24 @@ def recordings(which="main"):
     return out
 
 
+def _adder(out, offset):
+    """add(name, class, effects): appends a recording to `out`, its material,
+    postures and seed those of position offset + len(out) of the cycle."""
+    def add(name, cls, effects):
+        rec = {"name": name, "strength_class": cls, "effects": effects,
+               "target_peak_mm": TARGET_MM.get(cls)}
+        rec.update(_common(offset + len(out)))
+        out.append(rec)
+    return add
+
+
 VALIDATION_OFFSET = 50  # material/posture cycle and seeds 1750+: none shared with the main set
 
 
 def validation_recordings():
     """2 controls, per candidate one new shape weak and strong, 2 pairs."""
     out = []
-
-    def add(name, cls, effects):
-        rec = {"name": name, "strength_class": cls, "effects": effects,
-               "target_peak_mm": TARGET_MM.get(cls)}
-        rec.update(_common(VALIDATION_OFFSET + len(out)))
-        out.append(rec)
+    add = _adder(out, VALIDATION_OFFSET)
 
     for i in range(1, 3):
         add(f"val_control_{i:02d}", "control", [])
@@ -130,12 +131,7 @@ def holdout_recordings():
     the main and validation sets' evidence was seen, to test a change of
     that threshold out of sample)."""
     out = []
-
-    def add(name, cls, effects):
-        rec = {"name": name, "strength_class": cls, "effects": effects,
-               "target_peak_mm": TARGET_MM.get(cls)}
-        rec.update(_common(HOLDOUT_OFFSET + len(out)))
-        out.append(rec)
+    add = _adder(out, HOLDOUT_OFFSET)
 
     for i in range(1, 5):
         add(f"hold_control_{i:02d}", "control", [])
