@@ -114,12 +114,12 @@ Observables ForwardModel::solve_posture(std::size_t i, const Config& c, const Po
   return obs;
 }
 
-std::vector<Observables> ForwardModel::solve(const Config& c, const PostureVisitor& visit)
+std::vector<Observables> ForwardModel::solve(const Config& c)
 {
   prepare(c);
   std::vector<Observables> obs;
   for (std::size_t i = 0; i < _postures.size(); ++i)
-    obs.push_back(solve_posture(i, c, visit));
+    obs.push_back(solve_posture(i, c));
   return obs;
 }
 

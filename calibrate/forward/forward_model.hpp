@@ -29,7 +29,7 @@ public:
 
   /// Observables of each posture (in the order given) for case `c`.
   /// Throws SolveError if a posture cannot be solved.
-  std::vector<Observables> solve(const Config& c, const PostureVisitor& visit = {});
+  std::vector<Observables> solve(const Config& c);
   /// The parts of solve: set up the mesh and the parameters of case `c`
   /// (collective), then solve posture `i` alone (its own warm start).
   void prepare(const Config& c);
