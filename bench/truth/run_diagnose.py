@@ -123,22 +123,32 @@ def read_result(out, entry, pseudo=None):
     row["verdict"] = dia.get("verdict")
     params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
+    row["coverage"] = coverage_rows(entry, row["named"], params, pseudo)
+    return row
+
+
+def coverage_rows(entry, named, params, pseudo):
+    """Per hidden effect the diagnosis named: its reference q (pseudo-true
+    where computed, `pseudo` {candidate: q*}, else the equivalent) against
+    the fitted parameter's 95 % interval (`params` {parameter: {"value",
+    "interval95"}})."""
+    rows = []
     for eff in entry.get("effects", []):
         q = eff.get("q_equivalent")
-        if not q or eff["candidate"] not in row["named"]:
+        if not q or eff["candidate"] not in named:
             continue
         p = params.get(q["parameter"])
         lo, hi = (p or {}).get("interval95", [None, None])
         covers = lambda v: None if lo is None or hi is None or v is None else bool(lo <= v <= hi)
         ref = pseudo.get(eff["candidate"])
-        row["coverage"].append({"candidate": eff["candidate"], "parameter": q["parameter"],
-                                "truth": q["value"], "approximate": bool(q.get("approximate")),
-                                "fitted": (p or {}).get("value"), "interval95": [lo, hi],
-                                "inside": covers(q["value"]), "pseudo_true": ref,
-                                "reference": ref if ref is not None else q["value"],
-                                "reference_kind": "pseudo-true" if ref is not None else "equivalent",
-                                "inside_reference": covers(ref if ref is not None else q["value"])})
-    return row
+        rows.append({"candidate": eff["candidate"], "parameter": q["parameter"],
+                     "truth": q["value"], "approximate": bool(q.get("approximate")),
+                     "fitted": (p or {}).get("value"), "interval95": [lo, hi],
+                     "inside": covers(q["value"]), "pseudo_true": ref,
+                     "reference": ref if ref is not None else q["value"],
+                     "reference_kind": "pseudo-true" if ref is not None else "equivalent",
+                     "inside_reference": covers(ref if ref is not None else q["value"])})
+    return rows
 
 
 def ratio(a, b):

@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+"""Score a committed benchmark run again against the pseudo-true values
+computed since (pseudo_true.py's file beside the manifest), without
+diagnosing again.
+
+    python3 bench/truth/rescore.py --manifest bench/truth/chest_wall/manifest.json \
+        --summary bench/truth/measured/summary_2026-12-04-chest-wall-main-2ranks.md [--out FILE.json]
+    python3 bench/truth/rescore.py --selftest
+
+--summary is a run's summary.json (run_diagnose.py; full precision) or its
+summary.md (the table's intervals are printed to 3 significant digits: a
+reference value within ROUNDING of an interval end is counted as the table
+says and listed as "borderline"). Prints the summary in run_diagnose.py's
+format with the rescored coverage. Only the standard library.
+"""
+import argparse
+import json
+import re
+import sys
+import tempfile
+from pathlib import Path
+
+from run_diagnose import coverage_rows, markdown, read_pseudo_true, summarize
+
+ROUNDING = 5e-3     # relative half-width of a 3-significant-digit number's last digit
+
+
+def rows_from_json(path):
+    return json.loads(path.read_text())["rows"]
+
+
+def parse_intervals(text):
+    """[(value, lo, hi)] of a table cell "v [lo, hi]; v [lo, hi]" ("-": [])."""
+    number = r"([-+0-9.eE]+|-)"
+    found = re.findall(number + r"\s*\[" + number + r",\s*" + number + r"\]", text)
+    return [tuple(None if x == "-" else float(x) for x in f) for f in found]
+
+
+def rows_from_markdown(path):
+    """The rows of summary.md's per-recording table: name, class, named,
+    seconds and the fitted intervals in the order of the named effects."""
+    lines = path.read_text().splitlines()
+    start = next(i for i, ln in enumerate(lines) if ln.startswith("| recording |"))
+    header = [c.strip() for c in lines[start].strip("|").split("|")]
+    rows = []
+    for ln in lines[start + 2:]:
+        if not ln.startswith("|"):
+            break
+        cell = dict(zip(header, (c.strip() for c in ln.strip("|").split("|"))))
+        named = cell["named"]
+        rows.append({"name": cell["recording"], "class": cell["class"], "seconds": float(cell["s"]),
+                     "named": None if named == "failed" else ([] if named == "none" else sorted(named.split("+"))),
+                     "intervals": parse_intervals(cell["fitted [95 % interval]"])})
+    return rows
+
+
+def rescored(row, entry, pseudo):
+    """`row` with hidden, peak and coverage from the manifest `entry` and the
+    pseudo-true values; a markdown row's intervals map to the named effects
+    in manifest order (the order run_diagnose.py printed them in)."""
+    out = {**row, "hidden": sorted(entry["hidden"]), "hidden_label": entry["hidden_label"],
+           "class": entry["strength_class"], "peak_change_mm": entry.get("peak_change_mm")}
+    if row["named"] is None:
+        return {**out, "coverage": []}
+    if "intervals" in row:
+        effects = [e for e in entry.get("effects", []) if e.get("q_equivalent") and e["candidate"] in row["named"]]
+        params = {e["q_equivalent"]["parameter"]: {"value": v, "interval95": [lo, hi]}
+                  for e, (v, lo, hi) in zip(effects, row["intervals"])}
+    else:
+        params = {c["parameter"]: {"value": c["fitted"], "interval95": c["interval95"]} for c in row["coverage"]}
+    out["coverage"] = coverage_rows(entry, row["named"], params, pseudo)
+    return out
+
+
+def borderline(rows):
+    """(recording, candidate) whose reference lies within ROUNDING of an interval end."""
+    near = lambda v, end: end is not None and v is not None and abs(v - end) <= ROUNDING * abs(end)
+    return [(r["name"], c["candidate"]) for r in rows for c in r["coverage"]
+            if near(c["reference"], c["interval95"][0]) or near(c["reference"], c["interval95"][1])]
+
+
+def rescore(manifest_path, summary_path):
+    manifest = json.loads(manifest_path.read_text())["recordings"]
+    pseudo = read_pseudo_true(manifest_path.parent)
+    source = rows_from_markdown if summary_path.suffix == ".md" else rows_from_json
+    rows = []
+    for row in source(summary_path):
+        if row["name"] not in manifest:
+            sys.exit(f"rescore.py: {row['name']} of {summary_path} is not in {manifest_path}")
+        rows.append(rescored(row, manifest[row["name"]], pseudo.get(row["name"], {})))
+    s = summarize(rows)
+    s["borderline"] = borderline(rows) if summary_path.suffix == ".md" else []
+    s["rows"] = rows
+    return s
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--manifest")
+    ap.add_argument("--summary", help="a run's summary.json or summary.md")
+    ap.add_argument("--out", help="write the rescored summary (JSON) here")
+    ap.add_argument("--selftest", action="store_true")
+    a = ap.parse_args(argv)
+    if a.selftest:
+        return selftest()
+    if not a.manifest or not a.summary:
+        ap.error("--manifest and --summary are required")
+    s = rescore(Path(a.manifest), Path(a.summary))
+    command = "python3 bench/truth/rescore.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    print(markdown(s, s["rows"], command))
+    if s["borderline"]:
+        print("borderline (reference within rounding of an interval end): "
+              + ", ".join(f"{n} {c}" for n, c in s["borderline"]))
+    if a.out:
+        Path(a.out).write_text(json.dumps(s, indent=1) + "\n")
+    return 0
+
+
+def selftest():
+    """A two-recording manifest, a pseudo-true file and a markdown table."""
+    with tempfile.TemporaryDirectory() as tmp:
+        d = Path(tmp)
+        eff = lambda c, p, v: {"candidate": c, "q_equivalent": {"parameter": p, "value": v}}
+        manifest = {"recordings": {
+            "a": {"name": "a", "hidden": ["gland_core"], "hidden_label": "gland_core", "strength_class": "weak",
+                  "effects": [eff("gland_core", "gland.stiffness_ratio", 0.2)]},
+            "c": {"name": "c", "hidden": [], "hidden_label": "none", "strength_class": "control", "effects": []}}}
+        (d / "manifest.json").write_text(json.dumps(manifest))
+        (d / "pseudo_true.json").write_text(json.dumps({"recordings": {"a": {"candidates": {
+            "gland_core": {"value": 0.301}}}}}))
+        (d / "summary.md").write_text(
+            "text\n\n| recording | class | hidden | peak [mm] | named | q equivalent | q pseudo-true | "
+            "fitted [95 % interval] | s |\n|---|---|---|---|---|---|---|---|---|\n"
+            "| a | weak | gland_core | 1 | gland_core | 0.2 | - | 0.25 [0.22, 0.3] | 90.0 |\n"
+            "| c | control | none | 0 | none | - | - | - | 40.0 |\n")
+        s = rescore(d / "manifest.json", d / "summary.md")
+        cov = s["rows"][0]["coverage"][0]
+        assert cov["reference_kind"] == "pseudo-true" and cov["inside_reference"] is False, cov
+        assert cov["inside"] is False and s["coverage_reference"]["pseudo_true_of"] == 1, s
+        assert s["borderline"] == [("a", "gland_core")], s["borderline"]
+        assert s["controls"] == {"false_discoveries": 0, "of": 1, "names": []}, s["controls"]
+        assert parse_intervals("1.2e-06 [9e-07, 2e-06]; 0.3 [-, 0.5]") == [(1.2e-6, 9e-7, 2e-6), (0.3, None, 0.5)]
+    print("selftest passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
