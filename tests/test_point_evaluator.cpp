@@ -1,12 +1,17 @@
 // The forward map of a diagnosis (point_evaluator.hpp): a posture left out
 // adds nothing, a posture that cannot be solved is marked, not thrown, and
-// its noise floor is the largest measured one (mesh_error.hpp).
+// its noise floor is the largest measured one (mesh_error.hpp); on posture
+// groups the group that failed logs why.
+#include "case_groups.hpp"
 #include "errors.hpp"
 #include "fixtures.hpp"
 #include "mesh_error.hpp"
 #include "point_evaluator.hpp"
 #include "recording.hpp"
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
+#include <sstream>
 
 using namespace breastsim;
 using namespace breastsim::calibration;
@@ -90,6 +95,28 @@ TEST(PointEvaluator, TryEachMarksAPostureThatFailsInsteadOfThrowing)
   // And the evaluator still solves a solvable case afterwards.
   const PointEvaluation ok = ev.try_each(fixtures::coarse_case());
   EXPECT_EQ(ok.solved, (std::vector<bool>{true, true}));
+}
+
+// On 2 ranks with --ranks-per-case 1, world rank 1 solves (and fails) the
+// second posture: its solver message is logged there, by its group.
+TEST(PointEvaluator, FailedPostureIsLoggedByTheGroupThatSolvedIt)
+{
+  const Recording rec = standing_and_supine();
+  CaseGroups groups(MPI_COMM_WORLD, 1, "--ranks-per-case");
+  std::ostringstream captured;
+  const auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>(
+      "captured", std::make_shared<spdlog::sinks::ostream_sink_st>(captured)));
+  PointEvaluator ev(rec, groups.comm(), &groups);
+  const PointEvaluation e = ev.try_each(too_soft());
+  spdlog::set_default_logger(previous);
+  ASSERT_EQ(e.solved, (std::vector<bool>{false, false}));
+  const std::string text = captured.str();
+  for (std::size_t i = 0; i < rec.postures.size(); ++i)
+  {
+    const bool logged = text.find("posture '" + rec.postures[i].name + "' not solved") != std::string::npos;
+    EXPECT_EQ(logged, groups.runs(i)) << text;
+  }
 }
 
 TEST(PointEvaluator, UnsolvedPostureTakesTheLargestMeasuredFloor)

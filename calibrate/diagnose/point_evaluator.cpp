@@ -67,7 +67,7 @@ std::vector<double> PointEvaluator::posture_part(std::size_t i, const Config& c)
   {
     if (!_tolerant)
       throw;
-    log::warn("posture '{}' not solved: {}", posture.name, err.what());
+    log::warn_on(_comm, "posture '{}' not solved: {}", posture.name, err.what()); // from its group
     return unsolved;
   }
   return part;

@@ -76,6 +76,19 @@ void warn(fmt::format_string<Args...> f, Args&&... args)
     spdlog::warn(f, std::forward<Args>(args)...);
 }
 
+/// A warning from rank 0 of `comm` (e.g. a sub-communicator whose rank 0 is
+/// not the world's: a posture group's solver failure, shown where it happens).
+template <typename... Args>
+void warn_on(MPI_Comm comm, fmt::format_string<Args...> f, Args&&... args)
+{
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank != 0)
+    return;
+  clear_progress();
+  spdlog::warn(f, std::forward<Args>(args)...);
+}
+
 template <typename... Args>
 void debug(fmt::format_string<Args...> f, Args&&... args)
 {
