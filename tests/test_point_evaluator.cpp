@@ -119,6 +119,23 @@ TEST(PointEvaluator, FailedPostureIsLoggedByTheGroupThatSolvedIt)
   }
 }
 
+TEST(PointEvaluator, LeaveOutFailuresExcludesOnlyNewFailures)
+{
+  const Recording rec = standing_and_supine();
+  PointEvaluator ev(rec, MPI_COMM_WORLD);
+  PointEvaluation e;
+  EXPECT_TRUE(ev.leave_out_failures(fixtures::coarse_case(), e).empty());
+  EXPECT_EQ(e.solved, (std::vector<bool>{true, true}));
+  ev.exclude(1);
+  EXPECT_EQ(ev.leave_out_failures(too_soft(), e), (std::vector<std::size_t>{0}));
+  EXPECT_TRUE(ev.excluded(0));
+  EXPECT_EQ(e.solved, (std::vector<bool>{false, false}));
+  // Both left out now: nothing is solved, nothing newly lost.
+  const int solves = ev.posture_solves();
+  EXPECT_TRUE(ev.leave_out_failures(fixtures::coarse_case(), e).empty());
+  EXPECT_EQ(ev.posture_solves(), solves);
+}
+
 TEST(PointEvaluator, UnsolvedPostureTakesTheLargestMeasuredFloor)
 {
   std::vector<double> floor = {1e-4, 0.0, 3e-4, 0.0};

@@ -25,6 +25,28 @@ namespace breastsim::calibration
 {
 namespace
 {
+/// A posture was newly left out of the finer mesh (Search::on_finer): the
+/// step that solved there restarts over the others. Not an std::exception,
+/// so that nothing catching solver errors takes it.
+struct FinerPostureLost
+{
+};
+
+/// `step()`, restarted while a posture is newly left out of the finer mesh
+/// (at most once per posture: on_finer throws SolveError when none is left).
+template <typename Step>
+auto retry_without_lost(Step&& step)
+{
+  for (;;)
+    try
+    {
+      return step();
+    }
+    catch (const FinerPostureLost&)
+    {
+    }
+}
+
 void check_options(const DiagnoseOptions& o)
 {
   for (const auto& name : o.candidates)
@@ -119,6 +141,36 @@ struct Search
   std::unique_ptr<FitState> fine_state;
   int found = 0;                           ///< terms found so far
 
+  /// Postures solved on the finer mesh at the noise floor that a later
+  /// model fails in there (Diagnosis::lost_on_finer).
+  std::vector<std::string> lost_on_finer;
+
+  /// Case `c` on the finer mesh. A posture failing there for the first time
+  /// is left out of every later solve on it: the current model's fit there
+  /// (which holds it) is dropped and FinerPostureLost thrown, so that the
+  /// step restarts over the other postures (retry_without_lost).
+  PointEvaluation on_finer(const Config& c)
+  {
+    PointEvaluation e;
+    const auto lost = fine_ev->leave_out_failures(c, e);
+    if (lost.empty())
+      return e;
+    for (std::size_t p : lost)
+    {
+      lost_on_finer.push_back(rec.postures[p].name);
+      log::warn("posture '{}' cannot be solved on the finer mesh any more: left out of its "
+                "solves from now on", rec.postures[p].name);
+    }
+    bool any = false;
+    for (std::size_t p = 0; p < rec.postures.size(); ++p)
+      any = any || !fine_ev->excluded(p);
+    if (!any)
+      throw SolveError(fmt::format("no posture can be solved on the mesh {:g} times finer any more, "
+                                   "so nothing can be checked on it (--mesh-ratio 1 turns the "
+                                   "checks off)", o.mesh_ratio));
+    fine_state.reset();
+    throw FinerPostureLost{};
+  }
   /// Some posture cannot be solved on the finer mesh (mesh_error.hpp).
   bool finer_leaves_out() const
   {
@@ -160,7 +212,8 @@ std::size_t score_candidates(Search& s, Round& rd)
   std::vector<double> mesh_e;
   if (s.fine_ev)
   {
-    const PointEvaluation ef = (*s.fine_ev)(finer(s.state.config, s.o.mesh_ratio));
+    const Config fine = finer(s.state.config, s.o.mesh_ratio);
+    const PointEvaluation ef = retry_without_lost([&] { return s.on_finer(fine); });
     for (std::size_t i = 0; i < s.state.r.size(); ++i)
       mesh_e.push_back(s.state.r[i] - ef.r[i]);
     const auto rows = rows_by_posture(s.state, s.rec);
@@ -217,13 +270,15 @@ std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vect
 {
   Evidence& e = evidence_of(rd, rd.tested);
   const Config fine_base = finer(s.current, s.o.mesh_ratio);
-  const Evaluate on_fine = [&](const Config& c) { return (*s.fine_ev)(c); };
-  if (!s.fine_state)
-    s.fine_state = std::make_unique<FitState>(gauss_newton_refit(
-        on_fine, fine_base, s.frees, s.state, "refinement check: current model on the finer mesh"));
+  const Evaluate on_fine = [&](const Config& c) { return s.on_finer(c); };
+  auto with = retry_without_lost([&] {
+    if (!s.fine_state)
+      s.fine_state = std::make_unique<FitState>(gauss_newton_refit(
+          on_fine, fine_base, s.frees, s.state, "refinement check: current model on the finer mesh"));
+    return std::make_unique<FitState>(gauss_newton_refit(
+        on_fine, fine_base, trial, rd.after, "refinement check: with " + e.candidate));
+  });
   const FitState& without = *s.fine_state;
-  auto with = std::make_unique<FitState>(gauss_newton_refit(
-      on_fine, fine_base, trial, rd.after, "refinement check: with " + e.candidate));
   e.refinement_checked = true;
   e.lr_fine = without.chi2 - with->chi2;
   // Extrapolated from the LR on the same postures on both meshes.
@@ -384,8 +439,9 @@ FitState final_fit_on_finer_mesh(Search& s, bool fit_only)
   const Config fine = finer(s.current, s.o.mesh_ratio);
   if (fit_only)
     return fit(*s.fine_ev, fine, s.frees, log_values(s.state), s.o.lsq, "refit on the finer mesh");
-  const Evaluate on_fine = [&](const Config& c) { return (*s.fine_ev)(c); };
-  return gauss_newton_refit(on_fine, fine, s.frees, s.state, "final model on the finer mesh");
+  const Evaluate on_fine = [&](const Config& c) { return s.on_finer(c); };
+  return retry_without_lost(
+      [&] { return gauss_newton_refit(on_fine, fine, s.frees, s.state, "final model on the finer mesh"); });
 }
 } // namespace
 
@@ -424,6 +480,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   d.mesh_size = mesh.mesh_file.empty() ? mesh.mesh_size : 0.0;
   d.mesh_ratio = o.mesh_ratio;
   d.final_fit.config = on_users_mesh(d.final_fit.config, current);
+  d.lost_on_finer = s.lost_on_finer;
   if (s.fine_ev)
     d.posture_solves += s.fine_ev->posture_solves();
   d.posture_solves += s.ev.posture_solves();

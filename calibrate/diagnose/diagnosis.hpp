@@ -192,6 +192,11 @@ struct Diagnosis
   /// mesh: their e_h is the largest of the others', the refinement checks
   /// leave them out, and the final values are the diagnosis mesh's.
   std::vector<std::string> unsolved_on_finer;
+  /// Postures solved on the finer mesh at the noise floor that a later model
+  /// (a refinement check's, the final refit's) cannot be solved in there:
+  /// left out of the finer mesh's solves from then on, as above (the step
+  /// that met it restarts without them).
+  std::vector<std::string> lost_on_finer;
   int order = 1;                      ///< element order of the diagnosis mesh
   double mesh_size = 0;               ///< its mesh size [m] (0: a user's mesh file)
   double mesh_ratio = 0;              ///< the finer check mesh: mesh_size / mesh_ratio (<= 1: none)

@@ -241,6 +241,7 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
                                 {"mesh_error_mm", 1e3 * d.mesh_error[p]},
                                 {"sigma_eff_mm", 1e3 * d.sigma_eff[p]}});
   j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
+  j["lost_on_finer_mesh"] = d.lost_on_finer;
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
   j["undecided"] = nlohmann::json::array();
@@ -324,6 +325,11 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
                      "refinement checks compare the LR of the other postures, and the final values "
                      "are the diagnosis mesh's\n",
                      fmt::join(d.unsolved_on_finer, ", "));
+  if (!d.lost_on_finer.empty())
+    s += fmt::format("  a later model of this diagnosis cannot be solved on the finer mesh in {}: "
+                     "left out of the finer mesh's solves from then on (the step that met it was "
+                     "repeated without it), and the final values are the diagnosis mesh's\n",
+                     fmt::join(d.lost_on_finer, ", "));
   for (std::size_t k = 0; k < d.rounds.size(); ++k)
   {
     const Round& r = d.rounds[k];
@@ -354,7 +360,8 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
   }
   if (!d.se_numerical.empty())
     s += fmt::format("\nFinal fit on the {} (numerical{} uncertainty included): {}\n",
-                     d.unsolved_on_finer.empty() ? "finer check mesh" : "diagnosis mesh",
+                     d.unsolved_on_finer.empty() && d.lost_on_finer.empty() ? "finer check mesh"
+                                                                            : "diagnosis mesh",
                      d.se_model_form.empty() ? "" : " and model-form", fit_line(d.final_fit));
   for (std::size_t i = 0; i < d.se_model_form.size() && i < d.final_fit.names.size(); ++i)
     s += fmt::format("  {}: SE of ln p statistical {:.3f}, numerical {:.3f}, model-form {:.3f} (the "

@@ -128,4 +128,17 @@ PointEvaluation PointEvaluator::try_each(const Config& c)
   } tolerant(_tolerant);
   return (*this)(c);
 }
+
+std::vector<std::size_t> PointEvaluator::leave_out_failures(const Config& c, PointEvaluation& e)
+{
+  e = try_each(c);
+  std::vector<std::size_t> lost;
+  for (std::size_t i = 0; i < e.solved.size(); ++i)
+    if (!e.solved[i] && !_excluded[i])
+    {
+      _excluded[i] = true;
+      lost.push_back(i);
+    }
+  return lost;
+}
 } // namespace breastsim::calibration

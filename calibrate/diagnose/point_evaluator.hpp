@@ -40,6 +40,9 @@ public:
   /// Collective. As operator(), but a posture whose solve fails is marked
   /// unsolved (PointEvaluation::solved) instead of throwing.
   PointEvaluation try_each(const Config& c);
+  /// Collective. As try_each, and a posture that was not excluded but fails
+  /// is excluded from now on; returns the postures so newly left out.
+  std::vector<std::size_t> leave_out_failures(const Config& c, PointEvaluation& e);
   /// Leave posture `i` out of every later evaluation (not solved; its
   /// residuals 0, so it adds nothing to chi2 or to a Jacobian).
   void exclude(std::size_t i) { _excluded.at(i) = true; }
