@@ -77,6 +77,12 @@ TEST(PointEvaluator, ExcludedPostureIsNotSolvedAndAddsNothing)
     EXPECT_EQ(one.raw[27 + k], 0.0);
     EXPECT_EQ(one.nipple_error[1][k], 0.0);
   }
+  // Included again: solved as before.
+  ev.include(1);
+  const PointEvaluation back = ev(c);
+  EXPECT_EQ(back.solved, (std::vector<bool>{true, true}));
+  EXPECT_EQ(ev.posture_solves(), 5);
+  EXPECT_NEAR(back.distances[1][0], all.distances[1][0], 1e-9);
 }
 
 TEST(PointEvaluator, TryEachMarksAPostureThatFailsInsteadOfThrowing)

@@ -47,46 +47,6 @@ auto retry_without_lost(Step&& step)
     }
 }
 
-void check_options(const DiagnoseOptions& o)
-{
-  for (const auto& name : o.candidates)
-    candidate(name); // unknown names: InputError
-  if (!(o.alpha > 0 && o.alpha < 0.5))
-    throw InputError(fmt::format("--alpha = {} is out of range: allowed (0, 0.5)", o.alpha));
-  if (o.refits < 1 || o.refits > 10)
-    throw InputError(fmt::format("--refits = {} is out of range: allowed [1, 10]", o.refits));
-  if (o.mesh_ratio > 4)
-    throw InputError(fmt::format("--mesh-ratio = {} is out of range: allowed <= 1 (off) or (1, 4]",
-                                 o.mesh_ratio));
-  if (!(o.min_effect >= 0 && o.min_effect <= 5))
-    throw InputError(fmt::format("--min-effect = {} is out of range: allowed [0, 5]", o.min_effect));
-  if (!(o.min_misfit_share >= 0 && o.min_misfit_share < 1))
-    throw InputError(fmt::format("--min-misfit-share = {} is out of range: allowed [0, 1) (0: off)",
-                                 o.min_misfit_share));
-  if (!(o.min_misfit_share_later >= 0 && o.min_misfit_share_later < 1))
-    throw InputError(fmt::format("--min-misfit-share-later = {} is out of range: allowed [0, 1) (0: off)",
-                                 o.min_misfit_share_later));
-  if (!(o.min_score_fraction >= 0 && o.min_score_fraction <= 1))
-    throw InputError(fmt::format("--min-score-fraction = {} is out of range: allowed [0, 1] (0: off)",
-                                 o.min_score_fraction));
-  if (!(o.refinement_order >= 0 && o.refinement_order <= 4))
-    throw InputError(fmt::format("--refinement-order = {} is out of range: allowed [0, 4] (0: off)",
-                                 o.refinement_order));
-  if (o.order < 0 || o.order > 2)
-    throw InputError(fmt::format("--order = {} is out of range: allowed 1, 2 (0: the case's)", o.order));
-  if (!(o.mesh_size >= 0 && o.mesh_size <= 0.1))
-    throw InputError(fmt::format("--mesh-size = {} m is out of range: allowed (0, 0.1] (0: the case's)",
-                                 o.mesh_size));
-  if (!(o.min_separation_z >= 0 && o.min_separation_z <= 10))
-    throw InputError(fmt::format("--min-separation-z = {} is out of range: allowed [0, 10] (0: off)",
-                                 o.min_separation_z));
-  if (o.jackknife_patches < 0 || o.jackknife_patches > 10)
-    throw InputError(fmt::format("--jackknife-patches = {} is out of range: allowed [0, 10] (0: off)",
-                                 o.jackknife_patches));
-  if (o.max_rounds < 1 || o.max_rounds > 10)
-    throw InputError(fmt::format("--max-rounds = {} is out of range: allowed [1, 10]", o.max_rounds));
-}
-
 /// The current model with the recording's a-priori values (named like --fit),
 /// on the diagnosis discretisation (o.order, o.mesh_size; a user's mesh file
 /// keeps its mesh).
@@ -152,9 +112,15 @@ struct Search
   PointEvaluation on_finer(const Config& c)
   {
     PointEvaluation e;
-    const auto lost = fine_ev->leave_out_failures(c, e);
-    if (lost.empty())
-      return e;
+    if (note_lost(fine_ev->leave_out_failures(c, e)))
+      throw FinerPostureLost{};
+    return e;
+  }
+  /// Record postures newly left out of the finer mesh and drop the current
+  /// model's fit there; true if there were any. Throws SolveError when no
+  /// posture is left.
+  bool note_lost(const std::vector<std::size_t>& lost)
+  {
     for (std::size_t p : lost)
     {
       lost_on_finer.push_back(rec.postures[p].name);
@@ -168,8 +134,9 @@ struct Search
       throw SolveError(fmt::format("no posture can be solved on the mesh {:g} times finer any more, "
                                    "so nothing can be checked on it (--mesh-ratio 1 turns the "
                                    "checks off)", o.mesh_ratio));
-    fine_state.reset();
-    throw FinerPostureLost{};
+    if (!lost.empty())
+      fine_state.reset();
+    return !lost.empty();
   }
   /// Some posture cannot be solved on the finer mesh (mesh_error.hpp).
   bool finer_leaves_out() const
@@ -396,6 +363,36 @@ std::pair<std::vector<Free>, std::unique_ptr<FitState>> decide(Search& s, Round&
   return {};
 }
 
+/// After a found term: the postures left out of the finer mesh are tried
+/// there again with the model that has it; those it solves rejoin the finer
+/// mesh's solves (the current model's fit there is then made again, over
+/// every posture it solves, by the next check or by step 9).
+void rejoin_finer(Search& s, Diagnosis& d)
+{
+  if (!s.fine_ev || !s.finer_leaves_out())
+    return;
+  std::vector<std::size_t> out;
+  for (std::size_t p = 0; p < s.rec.postures.size(); ++p)
+    if (s.fine_ev->excluded(p))
+    {
+      out.push_back(p);
+      s.fine_ev->include(p);
+    }
+  PointEvaluation e;
+  auto failed = s.fine_ev->leave_out_failures(finer(s.current, s.o.mesh_ratio), e);
+  const auto was_out = [&](std::size_t p) { return std::find(out.begin(), out.end(), p) != out.end(); };
+  for (std::size_t p : out)
+    if (std::find(failed.begin(), failed.end(), p) == failed.end())
+    {
+      d.rejoined_on_finer.push_back(s.rec.postures[p].name);
+      log::info("posture '{}' solves on the finer mesh with '{}': back in its checks",
+                s.rec.postures[p].name, d.discovered.back());
+      s.fine_state.reset();
+    }
+  failed.erase(std::remove_if(failed.begin(), failed.end(), was_out), failed.end());
+  s.note_lost(failed); // a posture the found term's model fails in for the first time
+}
+
 /// One round of discovery (steps 4-7); true if a candidate was accepted
 /// (the search then holds the model with it).
 bool discovery_round(Search& s, Diagnosis& d)
@@ -429,6 +426,7 @@ bool discovery_round(Search& s, Diagnosis& d)
   s.current = rd.after.config; // the candidate term is on from now on
   s.state = rd.after;
   s.fine_state = std::move(fine); // none (no refinement check): step 9 refits on the finer mesh
+  rejoin_finer(s, d);
   return true;
 }
 
@@ -449,7 +447,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
                    MPI_Comm comm)
 {
   const Stopwatch stopwatch("diagnose");
-  check_options(o);
+  check(o);
   Diagnosis d;
   d.noise_sigma = rec.noise_sigma;
   d.mesh_error.assign(rec.postures.size(), 0.0);
@@ -466,7 +464,8 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   {
     const FitState f = s.fine_state ? *s.fine_state : final_fit_on_finer_mesh(s, d.fit_only);
     d.se_statistical = f.uncertainty.se_log;
-    d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, !s.finer_leaves_out(),
+    d.final_on_finer_mesh = !s.finer_leaves_out();
+    d.final_fit = with_numerical_uncertainty(s.state, f, o.mesh_ratio, d.final_on_finer_mesh,
                                              d.se_numerical);
   }
   if (s.found > 0)

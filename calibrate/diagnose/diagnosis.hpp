@@ -77,6 +77,10 @@ struct DiagnoseOptions
   LsqOptions lsq;
 };
 
+/// Throws InputError naming the option, its value and the allowed range
+/// unless every option of `o` is in range (the candidate names known).
+void check(const DiagnoseOptions& o);
+
 /// The evidence for or against one refitted candidate (evidence.hpp).
 struct Evidence
 {
@@ -197,6 +201,12 @@ struct Diagnosis
   /// left out of the finer mesh's solves from then on, as above (the step
   /// that met it restarts without them).
   std::vector<std::string> lost_on_finer;
+  /// Postures of the two lists above that the model solves on the finer
+  /// mesh again once a term is found: back in the finer mesh's solves.
+  std::vector<std::string> rejoined_on_finer;
+  /// The final values are the finer mesh's (false: some posture is left out
+  /// of it at the end, and they are the diagnosis mesh's).
+  bool final_on_finer_mesh = true;
   int order = 1;                      ///< element order of the diagnosis mesh
   double mesh_size = 0;               ///< its mesh size [m] (0: a user's mesh file)
   double mesh_ratio = 0;              ///< the finer check mesh: mesh_size / mesh_ratio (<= 1: none)

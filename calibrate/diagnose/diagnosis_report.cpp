@@ -242,6 +242,8 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
                                 {"sigma_eff_mm", 1e3 * d.sigma_eff[p]}});
   j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
   j["lost_on_finer_mesh"] = d.lost_on_finer;
+  j["rejoined_on_finer_mesh"] = d.rejoined_on_finer;
+  j["final_values_from_finer_mesh"] = d.final_on_finer_mesh;
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
   j["undecided"] = nlohmann::json::array();
@@ -322,14 +324,17 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
                                                                   : "");
   if (!d.unsolved_on_finer.empty())
     s += fmt::format("  the fitted current model cannot be solved on the finer mesh in {}: the "
-                     "refinement checks compare the LR of the other postures, and the final values "
-                     "are the diagnosis mesh's\n",
+                     "refinement checks compare the LR of the other postures\n",
                      fmt::join(d.unsolved_on_finer, ", "));
   if (!d.lost_on_finer.empty())
     s += fmt::format("  a later model of this diagnosis cannot be solved on the finer mesh in {}: "
                      "left out of the finer mesh's solves from then on (the step that met it was "
-                     "repeated without it), and the final values are the diagnosis mesh's\n",
+                     "repeated without it)\n",
                      fmt::join(d.lost_on_finer, ", "));
+  if (!d.rejoined_on_finer.empty())
+    s += fmt::format("  solved on the finer mesh again once a term was found, and back in its "
+                     "checks: {}\n",
+                     fmt::join(d.rejoined_on_finer, ", "));
   for (std::size_t k = 0; k < d.rounds.size(); ++k)
   {
     const Round& r = d.rounds[k];
@@ -360,8 +365,8 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
   }
   if (!d.se_numerical.empty())
     s += fmt::format("\nFinal fit on the {} (numerical{} uncertainty included): {}\n",
-                     d.unsolved_on_finer.empty() && d.lost_on_finer.empty() ? "finer check mesh"
-                                                                            : "diagnosis mesh",
+                     d.final_on_finer_mesh ? "finer check mesh"
+                                           : "diagnosis mesh (a posture is left out of the finer one)",
                      d.se_model_form.empty() ? "" : " and model-form", fit_line(d.final_fit));
   for (std::size_t i = 0; i < d.se_model_form.size() && i < d.final_fit.names.size(); ++i)
     s += fmt::format("  {}: SE of ln p statistical {:.3f}, numerical {:.3f}, model-form {:.3f} (the "

@@ -47,6 +47,8 @@ public:
   /// residuals 0, so it adds nothing to chi2 or to a Jacobian).
   void exclude(std::size_t i) { _excluded.at(i) = true; }
   bool excluded(std::size_t i) const { return _excluded.at(i); }
+  /// Solve posture `i` again in later evaluations (undoes exclude).
+  void include(std::size_t i) { _excluded.at(i) = false; }
 
   /// Posture solves of the evaluations so far, over all groups.
   int posture_solves() const { return _posture_solves; }
