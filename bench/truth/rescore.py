@@ -5,6 +5,7 @@ diagnosing again.
 
     python3 bench/truth/rescore.py --manifest bench/truth/chest_wall/manifest.json \
         --summary bench/truth/measured/summary_2026-12-04-chest-wall-main-2ranks.md [--out FILE.json]
+    python3 bench/truth/rescore.py --pool M1 S1 --pool M2 S2 ...   # several sets scored together
     python3 bench/truth/rescore.py --selftest
 
 --summary is a run's summary.json (run_diagnose.py; full precision) or its
@@ -79,7 +80,8 @@ def borderline(rows):
             if near(c["reference"], c["interval95"][0]) or near(c["reference"], c["interval95"][1])]
 
 
-def rescore(manifest_path, summary_path):
+def rescored_rows(manifest_path, summary_path):
+    """The rows of one run, rescored against its set's pseudo-true values."""
     manifest = json.loads(manifest_path.read_text())["recordings"]
     pseudo = read_pseudo_true(manifest_path.parent)
     source = rows_from_markdown if summary_path.suffix == ".md" else rows_from_json
@@ -88,8 +90,21 @@ def rescore(manifest_path, summary_path):
         if row["name"] not in manifest:
             sys.exit(f"rescore.py: {row['name']} of {summary_path} is not in {manifest_path}")
         rows.append(rescored(row, manifest[row["name"]], pseudo.get(row["name"], {})))
+    return rows
+
+
+def rescore(runs):
+    """Summary over the runs [(manifest, summary)] together (names must differ)."""
+    rows, near = [], []
+    for manifest_path, summary_path in runs:
+        part = rescored_rows(Path(manifest_path), Path(summary_path))
+        rows += part
+        near += borderline(part) if Path(summary_path).suffix == ".md" else []
+    names = [r["name"] for r in rows]
+    if len(set(names)) != len(names):
+        sys.exit("rescore.py: the runs share recording names; pool only different sets")
     s = summarize(rows)
-    s["borderline"] = borderline(rows) if summary_path.suffix == ".md" else []
+    s["borderline"] = near
     s["rows"] = rows
     return s
 
@@ -98,14 +113,16 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--manifest")
     ap.add_argument("--summary", help="a run's summary.json or summary.md")
+    ap.add_argument("--pool", nargs=2, action="append", default=[], metavar=("MANIFEST", "SUMMARY"),
+                    help="a further set's manifest and run, scored together with the others (repeatable)")
     ap.add_argument("--out", help="write the rescored summary (JSON) here")
     ap.add_argument("--selftest", action="store_true")
     a = ap.parse_args(argv)
     if a.selftest:
         return selftest()
-    if not a.manifest or not a.summary:
-        ap.error("--manifest and --summary are required")
-    s = rescore(Path(a.manifest), Path(a.summary))
+    if bool(a.manifest) != bool(a.summary) or not (a.manifest or a.pool):
+        ap.error("--manifest and --summary (or --pool MANIFEST SUMMARY) are required")
+    s = rescore(([(a.manifest, a.summary)] if a.manifest else []) + [tuple(x) for x in a.pool])
     command = "python3 bench/truth/rescore.py " + " ".join(argv if argv is not None else sys.argv[1:])
     print(markdown(s, s["rows"], command))
     if s["borderline"]:
@@ -133,12 +150,22 @@ def selftest():
             "fitted [95 % interval] | s |\n|---|---|---|---|---|---|---|---|---|\n"
             "| a | weak | gland_core | 1 | gland_core | 0.2 | - | 0.25 [0.22, 0.3] | 90.0 |\n"
             "| c | control | none | 0 | none | - | - | - | 40.0 |\n")
-        s = rescore(d / "manifest.json", d / "summary.md")
+        s = rescore([(d / "manifest.json", d / "summary.md")])
         cov = s["rows"][0]["coverage"][0]
         assert cov["reference_kind"] == "pseudo-true" and cov["inside_reference"] is False, cov
         assert cov["inside"] is False and s["coverage_reference"]["pseudo_true_of"] == 1, s
         assert s["borderline"] == [("a", "gland_core")], s["borderline"]
         assert s["controls"] == {"false_discoveries": 0, "of": 1, "names": []}, s["controls"]
+        pooled = d / "other"
+        pooled.mkdir()
+        (pooled / "manifest.json").write_text(json.dumps({"recordings": {"c2": {**manifest["recordings"]["c"],
+                                                                                 "name": "c2"}}}))
+        (pooled / "summary.md").write_text(
+            "| recording | class | hidden | peak [mm] | named | q equivalent | q pseudo-true | "
+            "fitted [95 % interval] | s |\n|---|---|---|---|---|---|---|---|---|\n"
+            "| c2 | control | none | 0 | none | - | - | - | 50.0 |\n")
+        both = rescore([(d / "manifest.json", d / "summary.md"), (pooled / "manifest.json", pooled / "summary.md")])
+        assert both["controls"]["of"] == 2 and both["single_effect"]["of"] == 1, both["controls"]
         assert parse_intervals("1.2e-06 [9e-07, 2e-06]; 0.3 [-, 0.5]") == [(1.2e-6, 9e-7, 2e-6), (0.3, None, 0.5)]
     print("selftest passed")
     return 0
