@@ -194,7 +194,8 @@ struct Diagnosis
   std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
   /// Postures the fitted current model cannot be solved in on the finer
   /// mesh: their e_h is the largest of the others', the refinement checks
-  /// leave them out, and the final values are the diagnosis mesh's.
+  /// leave them out, and the final values are the diagnosis mesh's unless
+  /// they rejoin (rejoined_on_finer).
   std::vector<std::string> unsolved_on_finer;
   /// Postures solved on the finer mesh at the noise floor that a later model
   /// (a refinement check's, the final refit's) cannot be solved in there:
