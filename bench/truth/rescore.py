@@ -21,7 +21,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import coverage_rows, markdown, read_pseudo_true, summarize
+from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize
 
 ROUNDING = 5e-3     # relative half-width of a 3-significant-digit number's last digit
 
@@ -64,7 +64,7 @@ def rescored(row, entry, pseudo):
     if row["named"] is None:
         return {**out, "coverage": []}
     if "intervals" in row:
-        effects = [e for e in entry.get("effects", []) if e.get("q_equivalent") and e["candidate"] in row["named"]]
+        effects = covered_effects(entry, row["named"])
         params = {e["q_equivalent"]["parameter"]: {"value": v, "interval95": [lo, hi]}
                   for e, (v, lo, hi) in zip(effects, row["intervals"])}
     else:

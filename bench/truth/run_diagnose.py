@@ -127,16 +127,20 @@ def read_result(out, entry, pseudo=None):
     return row
 
 
+def covered_effects(entry, named):
+    """The hidden effects of `entry` with an equivalent q that the diagnosis
+    named, in manifest order: the ones a coverage row is made for."""
+    return [e for e in entry.get("effects", []) if e.get("q_equivalent") and e["candidate"] in named]
+
+
 def coverage_rows(entry, named, params, pseudo):
     """Per hidden effect the diagnosis named: its reference q (pseudo-true
     where computed, `pseudo` {candidate: q*}, else the equivalent) against
     the fitted parameter's 95 % interval (`params` {parameter: {"value",
     "interval95"}})."""
     rows = []
-    for eff in entry.get("effects", []):
-        q = eff.get("q_equivalent")
-        if not q or eff["candidate"] not in named:
-            continue
+    for eff in covered_effects(entry, named):
+        q = eff["q_equivalent"]
         p = params.get(q["parameter"])
         lo, hi = (p or {}).get("interval95", [None, None])
         covers = lambda v: None if lo is None or hi is None or v is None else bool(lo <= v <= hi)
