@@ -165,7 +165,7 @@ void fit_current_model(Search& s, Diagnosis& d)
   s.state = fit(s.ev, s.current, s.frees, start_values(s.frees), s.o.lsq, "fit of the current model");
   if (!s.fine_ev)
     return;
-  const auto sigma = noise_floor(s.ev, *s.fine_ev, s.rec, s.state, s.o.mesh_ratio, d);
+  const auto sigma = noise_floor(s.ev, *s.fine_ev, s.rec, s.state, s.o, d);
   s.ev.set_sigma(sigma);
   s.fine_ev->set_sigma(sigma);
   s.state = fit(s.ev, s.current, s.frees, log_values(s.state), s.o.lsq, "fit of the current model");
@@ -399,7 +399,7 @@ bool discovery_round(Search& s, Diagnosis& d)
 {
   Round rd;
   rd.before = s.state;
-  rd.regions = locate_regions(s.rec, s.state, d.sigma_eff, s.o.neighbours, s.o.region_z);
+  rd.regions = locate_regions(s.rec, s.state, s.o.neighbours, s.o.region_z);
   if (!s.o.discover)
   {
     d.fit_only = true;
@@ -452,6 +452,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   d.noise_sigma = rec.noise_sigma;
   d.mesh_error.assign(rec.postures.size(), 0.0);
   d.sigma_eff.assign(rec.postures.size(), rec.noise_sigma);
+  d.noise_floor = o.noise_floor;
   Search s(rec, current, o, comm);
   fit_current_model(s, d);
   for (int round = 0; round < o.max_rounds; ++round)

@@ -230,6 +230,19 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
                      refused_text(d));
 }
 
+namespace
+{
+/// ", per point up to ..." of a local noise floor.
+std::string local_floor_text(const Diagnosis& d, std::size_t p, double sigma)
+{
+  if (d.noise_floor != NoiseFloor::local || p >= d.local_floor_max.size())
+    return "";
+  const double e = d.local_floor_max[p];
+  return fmt::format(" (RMS); per point up to {:.3f} mm -> {:.3f} mm", 1e3 * e,
+                     1e3 * std::hypot(sigma, e));
+}
+} // namespace
+
 nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
 {
   nlohmann::json j;
@@ -239,7 +252,10 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
     j["noise_floor"].push_back({{"posture", rec.postures[p].name},
                                 {"mesh_error_mm", 1e3 * d.mesh_error[p]},
-                                {"sigma_eff_mm", 1e3 * d.sigma_eff[p]}});
+                                {"sigma_eff_mm", 1e3 * d.sigma_eff[p]},
+                                {"local_mesh_error_max_mm",
+                                 p < d.local_floor_max.size() ? 1e3 * d.local_floor_max[p] : 0.0}});
+  j["noise_floor_spread"] = d.noise_floor == NoiseFloor::local ? "local" : "posture";
   j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
   j["lost_on_finer_mesh"] = d.lost_on_finer;
   j["rejoined_on_finer_mesh"] = d.rejoined_on_finer;
@@ -317,8 +333,9 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
                                       : std::string());
   for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
     if (d.mesh_error[p] > 0)
-      s += fmt::format("  numerical noise floor {:<12} mesh error {:.3f} mm -> sigma_eff {:.3f} mm{}\n",
+      s += fmt::format("  numerical noise floor {:<12} mesh error {:.3f} mm -> sigma_eff {:.3f} mm{}{}\n",
                        rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p],
+                       local_floor_text(d, p, d.noise_sigma),
                        unsolved_on_finer(d, rec.postures[p].name) ? " (not solved on the finer mesh: "
                                                                     "the largest of the others')"
                                                                   : "");

@@ -2,6 +2,7 @@
 #include "geometry_options.hpp"
 #include "errors.hpp"
 #include "log.hpp"
+#include "point_neighbours.hpp"
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -34,6 +35,13 @@ double landmark_change(const std::array<double, 3>& a, const std::array<double, 
 }
 } // namespace
 
+std::vector<double> local_floor(const std::vector<Point>& pts, const std::vector<double>& change,
+                                int k)
+{
+  k = std::min<int>(k, static_cast<int>(pts.size()) - 1);
+  return neighbourhood_rms(change, nearest_neighbours(pts, std::max(k, 0)));
+}
+
 bool fill_unsolved(std::vector<double>& floor, const std::vector<bool>& solved)
 {
   double largest = -1;
@@ -46,19 +54,42 @@ bool fill_unsolved(std::vector<double>& floor, const std::vector<bool>& solved)
   return largest >= 0;
 }
 
-std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, const Recording& rec,
-                                const FitState& state, double ratio, Diagnosis& d)
+namespace
 {
-  log::info("numerical noise floor: solving the fitted model on a mesh {:g} times finer", ratio);
-  const PointEvaluation ef = fine_ev.try_each(finer(state.config, ratio));
+/// sigma_eff of each point of posture p: from its own e_h,i (local floor of
+/// a solved posture) or from the posture's e_h.
+void append_point_sigmas(std::vector<double>& sigma, const Recording& rec, std::size_t p,
+                         const std::vector<double>& change, const DiagnoseOptions& o, Diagnosis& d)
+{
+  const auto& pts = rec.postures[p].points;
+  if (o.noise_floor != NoiseFloor::local || change.empty())
+  {
+    sigma.insert(sigma.end(), pts.size(), d.sigma_eff[p]);
+    return;
+  }
+  const auto e = local_floor(pts, change, o.neighbours);
+  for (double e_i : e)
+    sigma.push_back(std::hypot(rec.noise_sigma, e_i)); // sigma_eff,i^2 = sigma^2 + e_h,i^2
+  d.local_floor_max[p] = *std::max_element(e.begin(), e.end());
+}
+} // namespace
+
+std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, const Recording& rec,
+                                const FitState& state, const DiagnoseOptions& o, Diagnosis& d)
+{
+  log::info("numerical noise floor: solving the fitted model on a mesh {:g} times finer", o.mesh_ratio);
+  const PointEvaluation ef = fine_ev.try_each(finer(state.config, o.mesh_ratio));
   const PointEvaluation ec = ev(state.config);
   const std::size_t np = rec.postures.size();
   std::vector<double> landmark_error(np, 0.0);
   std::vector<bool> landmark_solved(np, false);
+  std::vector<std::vector<double>> change(np); // d_{h/r},i - d_h,i of the solved postures
   for (std::size_t p = 0; p < np; ++p)
     if (ef.solved[p])
     {
       d.mesh_error[p] = rms_change(ef.distances[p], ec.distances[p]);
+      for (std::size_t i = 0; i < ef.distances[p].size(); ++i)
+        change[p].push_back(ef.distances[p][i] - ec.distances[p][i]);
       landmark_solved[p] = rec.postures[p].nipple.has_value();
       if (landmark_solved[p])
         landmark_error[p] = landmark_change(ef.nipple_error[p], ec.nipple_error[p]);
@@ -66,7 +97,7 @@ std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, con
   if (!fill_unsolved(d.mesh_error, ef.solved))
     throw SolveError(fmt::format("the fitted current model cannot be solved on the mesh {:g} times "
                                  "finer in any posture, so it has no numerical noise floor "
-                                 "(--mesh-ratio 1 turns the floor off)", ratio));
+                                 "(--mesh-ratio 1 turns the floor off)", o.mesh_ratio));
   fill_unsolved(landmark_error, landmark_solved);
   for (std::size_t p = 0; p < np; ++p)
     if (!ef.solved[p])
@@ -78,10 +109,11 @@ std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, con
                 "leave it out", rec.postures[p].name);
     }
   std::vector<double> sigma;
+  d.local_floor_max = d.mesh_error;
   for (std::size_t p = 0; p < np; ++p)
   {
     d.sigma_eff[p] = std::hypot(rec.noise_sigma, d.mesh_error[p]);
-    sigma.insert(sigma.end(), rec.postures[p].points.size(), d.sigma_eff[p]);
+    append_point_sigmas(sigma, rec, p, change[p], o, d);
     log::info("numerical noise floor of posture '{}': {:.3f} mm (sigma_eff {:.3f} mm)",
               rec.postures[p].name, 1e3 * d.mesh_error[p], 1e3 * d.sigma_eff[p]);
   }

@@ -15,14 +15,20 @@ Config finer(const Config& c, double ratio);
 /// other takes the largest measured one. False if none was measured.
 bool fill_unsolved(std::vector<double>& floor, const std::vector<bool>& solved);
 
-/// Numerical noise floor of the diagnosis mesh at the fitted state: the RMS
-/// change e_h of each posture's distances (and of each landmark) on a mesh
-/// `ratio` times finer; sigma_eff^2 = sigma^2 + e_h^2 per residual (returned)
-/// and per posture (d.mesh_error, d.sigma_eff). A posture the finer mesh
-/// cannot solve takes the largest e_h of the others and is excluded from
-/// fine_ev (d.unsolved_on_finer); throws SolveError if none solves.
+/// Per-point numerical noise floor of one posture, e_h,i: the RMS of the
+/// distances' change over point i and its k nearest points.
+std::vector<double> local_floor(const std::vector<Point>& pts, const std::vector<double>& change,
+                                int k);
+
+/// Numerical noise floor of the diagnosis mesh at the fitted state, from the
+/// change of the distances (and of each landmark) on a mesh `o.mesh_ratio`
+/// times finer: e_h per posture (RMS change; d.mesh_error, d.sigma_eff) or,
+/// with NoiseFloor::local, per point (local_floor; d.local_floor_max);
+/// sigma_eff^2 = sigma^2 + e_h^2 per residual (returned). A posture the finer
+/// mesh cannot solve takes the largest posture e_h of the others and is
+/// excluded from fine_ev (d.unsolved_on_finer); throws SolveError if none solves.
 std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, const Recording& rec,
-                                const FitState& state, double ratio, Diagnosis& d);
+                                const FitState& state, const DiagnoseOptions& o, Diagnosis& d);
 
 /// Values and intervals of a found model: the finer mesh's values (else the
 /// diagnosis mesh's) with the numerical part |ln p_h - ln p_{h/r}| / (r - 1)

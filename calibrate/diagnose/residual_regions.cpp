@@ -1,39 +1,16 @@
 #include "residual_regions.hpp"
 #include "geometry_options.hpp"
+#include "point_neighbours.hpp"
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <fmt/format.h>
+#include <stdexcept>
 
 namespace breastsim::calibration
 {
 namespace
 {
-using Neighbours = std::vector<std::vector<std::size_t>>;
-
-/// The k nearest neighbours of each point (brute force).
-Neighbours nearest_neighbours(const std::vector<Point>& pts, int k)
-{
-  const std::size_t n = pts.size();
-  Neighbours knn(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    std::vector<std::pair<double, std::size_t>> dist;
-    for (std::size_t j = 0; j < n; ++j)
-      if (j != i)
-      {
-        double s = 0;
-        for (int c = 0; c < 3; ++c)
-          s += std::pow(pts[i][c] - pts[j][c], 2);
-        dist.push_back({s, j});
-      }
-    std::partial_sort(dist.begin(), dist.begin() + k, dist.end());
-    for (int m = 0; m < k; ++m)
-      knn[i].push_back(dist[m].second);
-  }
-  return knn;
-}
-
 /// Same-sign points beyond |z| = region_z connected through neighbourhoods,
 /// grown from `seed` (labelled in `label`).
 std::vector<std::size_t> cluster(std::size_t seed, const std::vector<double>& z, const Neighbours& knn,
@@ -86,7 +63,7 @@ std::array<double, 3> model_nipple(const Recording& rec, const FitState& f, std:
 }
 
 /// The region of posture p made of the flagged `members` and their neighbourhoods.
-Region make_region(const Recording& rec, const FitState& f, std::size_t p, double sigma,
+Region make_region(const Recording& rec, const FitState& f, std::size_t p, const double* w,
                    const std::vector<std::size_t>& members, const Neighbours& knn, double R)
 {
   const auto& pts = rec.postures[p].points;
@@ -110,7 +87,7 @@ Region make_region(const Recording& rec, const FitState& f, std::size_t p, doubl
         r.centroid[c] += pts[i][c];
       r.mean_residual += d[i];
       r.max_residual = std::max(r.max_residual, std::abs(d[i]));
-      sum_r += d[i] / sigma;
+      sum_r += w[i];
     }
   for (int c = 0; c < 3; ++c)
     r.centroid[c] /= r.points;
@@ -121,26 +98,29 @@ Region make_region(const Recording& rec, const FitState& f, std::size_t p, doubl
 }
 } // namespace
 
-std::vector<Region> locate_regions(const Recording& rec, const FitState& f,
-                                   const std::vector<double>& sigma,
-                                   int neighbours, double region_z)
+std::vector<Region> locate_regions(const Recording& rec, const FitState& f, int neighbours,
+                                   double region_z)
 {
   std::vector<Region> regions;
   const double R = HalfCapSpec::from(f.config).R;
+  std::size_t first_row = 0; // f.r: the points of every posture in order, then the landmarks
   for (std::size_t p = 0; p < rec.postures.size(); ++p)
   {
     const auto& pts = rec.postures[p].points;
-    const auto& d = f.distances[p];
     const std::size_t n = pts.size();
+    if (f.r.size() < first_row + n)
+      throw std::logic_error("locate_regions: the fit has fewer residuals than recorded points");
+    const double* w = f.r.data() + first_row; // d_i / sigma_eff,i
+    first_row += n;
     const int k = std::min<int>(neighbours, static_cast<int>(n) - 1);
     const Neighbours knn = nearest_neighbours(pts, k);
     // Neighbourhood z: sum of k + 1 whitened residuals / sqrt(k + 1) ~ N(0, 1) for noise.
     std::vector<double> z(n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      double s = d[i] / sigma[p];
+      double s = w[i];
       for (auto j : knn[i])
-        s += d[j] / sigma[p];
+        s += w[j];
       z[i] = s / std::sqrt(k + 1.0);
     }
     std::vector<int> label(n, -1);
@@ -150,7 +130,7 @@ std::vector<Region> locate_regions(const Recording& rec, const FitState& f,
         continue;
       const auto members = cluster(seed, z, knn, region_z, label);
       if (members.size() >= 3)
-        regions.push_back(make_region(rec, f, p, sigma[p], members, knn, R));
+        regions.push_back(make_region(rec, f, p, w, members, knn, R));
     }
   }
   std::sort(regions.begin(), regions.end(),

@@ -6,10 +6,9 @@
 
 namespace breastsim::calibration
 {
-/// Regions of systematic residual of one fit (neighbourhood means of the
-/// residuals whitened by sigma[posture]; clusters of same-sign points
+/// Regions of systematic residual of one fit (neighbourhood means of its
+/// whitened residuals f.r, d_i / sigma_eff,i; clusters of same-sign points
 /// beyond region_z), largest |z| first.
-std::vector<Region> locate_regions(const Recording& rec, const FitState& f,
-                                   const std::vector<double>& sigma,
-                                   int neighbours, double region_z);
+std::vector<Region> locate_regions(const Recording& rec, const FitState& f, int neighbours,
+                                   double region_z);
 } // namespace breastsim::calibration

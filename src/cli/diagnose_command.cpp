@@ -15,6 +15,34 @@
 
 namespace breastsim::cli
 {
+namespace
+{
+/// The diagnosis mesh and its check mesh (docs/DIAGNOSE.md, steps 1-2).
+void add_mesh_options(CLI::App* app, calibration::DiagnoseOptions& d)
+{
+  d.order = 2;
+  d.mesh_size = 0.012;
+  app->add_option("--order", d.order,
+                  "element order of the diagnosis mesh (0: the case's; docs/DIAGNOSE.md)")
+      ->capture_default_str();
+  app->add_option("--mesh-size", d.mesh_size,
+                  "mesh size of the diagnosis mesh [m] (0: the case's; a mesh file keeps its mesh)")
+      ->capture_default_str();
+  app->add_option("--mesh-ratio", d.mesh_ratio,
+                  "numerical noise floor: the fitted model is also solved on a mesh this many "
+                  "times finer (<= 1: off)")
+      ->capture_default_str();
+  app->add_option_function<std::string>(
+         "--noise-floor",
+         [&d](const std::string& v)
+         { d.noise_floor = v == "local" ? calibration::NoiseFloor::local : calibration::NoiseFloor::posture; },
+         "how the numerical noise floor is spread: posture (one per posture, its RMS change) or "
+         "local (per point, over its neighbourhood)")
+      ->check(CLI::IsMember({"posture", "local"}))
+      ->option_text("posture|local (default: posture)");
+}
+} // namespace
+
 Command add_diagnose_command(CLI::App& root)
 {
   struct Options
@@ -43,18 +71,10 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--max-rounds", o->d.max_rounds, "rounds of discovery")->capture_default_str();
   app->add_option("--refits", o->d.refits, "significant candidates refitted per round (the largest "
                                            "likelihood ratio wins)")->capture_default_str();
-  o->d.order = 2;
-  o->d.mesh_size = 0.012;
-  app->add_option("--order", o->d.order, "element order of the diagnosis mesh (0: the case's; "
-                                         "docs/DIAGNOSE.md)")->capture_default_str();
-  app->add_option("--mesh-size", o->d.mesh_size, "mesh size of the diagnosis mesh [m] (0: the case's; "
-                                                 "a mesh file keeps its mesh)")->capture_default_str();
   app->add_option("--min-score-fraction", o->d.min_score_fraction,
                   "refit a significant candidate only if its score reaches this fraction of its "
                   "critical value with the mesh allowance (0: refit every one)")->capture_default_str();
-  app->add_option("--mesh-ratio", o->d.mesh_ratio, "numerical noise floor: the fitted model is "
-                                                   "also solved on a mesh this many times finer "
-                                                   "(<= 1: off)")->capture_default_str();
+  add_mesh_options(app, o->d);
   app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
                                                    "this fraction of the noise (RMS), also at its "
                                                    "interval's end (0: off)")->capture_default_str();

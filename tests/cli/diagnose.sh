@@ -123,6 +123,7 @@ PY
   expect_fail "--mesh-size = -0.01 m is out of range" "$work/recording.json" --mesh-size -0.01
   expect_fail "--min-separation-z = -1 is out of range" "$work/recording.json" --min-separation-z -1
   expect_fail "--jackknife-patches = 11 is out of range" "$work/recording.json" --jackknife-patches 11
+  expect_fail "--noise-floor" "$work/recording.json" --noise-floor everywhere
   sed 's/"noise_sigma":[^,]*/"noise_sigma":-1/' "$work/recording.json" > "$work/neg.json"
   expect_fail "key 'noise_sigma' = -1" "$work/neg.json"
 fi
