@@ -1,6 +1,7 @@
 // The numerical noise floor spread over the points (--noise-floor local) and
 // the regions it whitens.
 #include "fixtures.hpp"
+#include "diagnosis_report.hpp"
 #include "mesh_error.hpp"
 #include "point_neighbours.hpp"
 #include "residual_regions.hpp"
@@ -94,4 +95,22 @@ TEST(NoiseFloor, RegionsAreFoundInTheWhitenedResiduals)
       sigma[20 * a + b] = std::hypot(rec.noise_sigma, 1e-3);
   whiten(sigma);
   EXPECT_TRUE(locate_regions(rec, f, 12, 4.0).empty());
+}
+
+TEST(NoiseFloor, JsonGivesTheLargestPointFloorOnlyWhenLocal)
+{
+  Recording rec;
+  rec.noise_sigma = 5e-4;
+  rec.postures.push_back({});
+  rec.postures[0].name = "standing";
+  Diagnosis d;
+  d.noise_sigma = rec.noise_sigma;
+  d.mesh_error = {5e-5};
+  d.sigma_eff = {std::hypot(5e-4, 5e-5)};
+  auto j = noise_floor_json(d, rec); // posture: local_floor_max stays empty
+  EXPECT_TRUE(j[0]["local_mesh_error_max_mm"].is_null());
+  EXPECT_NEAR(j[0]["mesh_error_mm"].get<double>(), 0.05, 1e-12);
+  d.local_floor_max = {7e-4};
+  j = noise_floor_json(d, rec);
+  EXPECT_NEAR(j[0]["local_mesh_error_max_mm"].get<double>(), 0.7, 1e-12);
 }

@@ -47,7 +47,7 @@ struct DiagnoseOptions
   /// the few points where the diagnosis mesh is poor (a crease at the
   /// inframammary fold: up to 0.7 mm against a posture RMS of 0.05 mm, on an
   /// independent-truth control) are not averaged away.
-  NoiseFloor noise_floor = NoiseFloor::posture;
+  NoiseFloor noise_floor = NoiseFloor::local;
   /// Practical significance: an accepted term must change the model surface
   /// by at least this fraction of the noise sigma (RMS over all points), also
   /// at the end of its 95 % interval nearest the null (0: off).
@@ -205,8 +205,8 @@ struct Diagnosis
   double noise_sigma = 0;
   std::vector<double> mesh_error;     ///< e_h per posture (distances) [m]
   std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
-  std::vector<double> local_floor_max; ///< largest e_h,i per posture [m] (NoiseFloor::local)
-  NoiseFloor noise_floor = NoiseFloor::posture;
+  std::vector<double> local_floor_max; ///< largest e_h,i per posture [m] (empty unless NoiseFloor::local)
+  NoiseFloor noise_floor = NoiseFloor::local;
   /// Postures the fitted current model cannot be solved in on the finer
   /// mesh: their e_h is the largest of the others', the refinement checks
   /// leave them out, and the final values are the diagnosis mesh's unless

@@ -243,18 +243,28 @@ std::string local_floor_text(const Diagnosis& d, std::size_t p, double sigma)
 }
 } // namespace
 
+nlohmann::json noise_floor_json(const Diagnosis& d, const Recording& rec)
+{
+  auto a = nlohmann::json::array();
+  for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
+  {
+    nlohmann::json f = {{"posture", rec.postures[p].name},
+                        {"mesh_error_mm", 1e3 * d.mesh_error[p]},
+                        {"sigma_eff_mm", 1e3 * d.sigma_eff[p]},
+                        {"local_mesh_error_max_mm", nullptr}}; // null: the floor is not local
+    if (p < d.local_floor_max.size())
+      f["local_mesh_error_max_mm"] = 1e3 * d.local_floor_max[p];
+    a.push_back(f);
+  }
+  return a;
+}
+
 nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
 {
   nlohmann::json j;
   j["format"] = "breastsim-diagnosis/1";
   j["noise_sigma_mm"] = 1e3 * d.noise_sigma;
-  j["noise_floor"] = nlohmann::json::array();
-  for (std::size_t p = 0; p < d.mesh_error.size(); ++p)
-    j["noise_floor"].push_back({{"posture", rec.postures[p].name},
-                                {"mesh_error_mm", 1e3 * d.mesh_error[p]},
-                                {"sigma_eff_mm", 1e3 * d.sigma_eff[p]},
-                                {"local_mesh_error_max_mm",
-                                 p < d.local_floor_max.size() ? 1e3 * d.local_floor_max[p] : 0.0}});
+  j["noise_floor"] = noise_floor_json(d, rec);
   j["noise_floor_spread"] = d.noise_floor == NoiseFloor::local ? "local" : "posture";
   j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
   j["lost_on_finer_mesh"] = d.lost_on_finer;

@@ -7,6 +7,9 @@
 
 namespace breastsim::calibration
 {
+/// Per posture: the numerical noise floor e_h, sigma_eff and, with a local
+/// floor, the largest point floor (null otherwise) [mm].
+nlohmann::json noise_floor_json(const Diagnosis& d, const Recording& rec);
 nlohmann::json to_json(const Diagnosis& d, const Recording& rec);
 /// The verdict in plain words (Diagnosis::verdict).
 std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha);

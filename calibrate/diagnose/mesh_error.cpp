@@ -19,19 +19,28 @@ Config finer(const Config& c, double ratio)
 
 namespace
 {
-/// RMS difference of two posture's distance lists [m].
-double rms_change(const std::vector<double>& a, const std::vector<double>& b)
+/// Element-wise change b_i - a_i of two distance lists [m].
+std::vector<double> difference(const std::vector<double>& a, const std::vector<double>& b)
+{
+  std::vector<double> c;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+    c.push_back(b[i] - a[i]);
+  return c;
+}
+
+/// RMS of a list of changes [m] (0 for an empty list).
+double rms(const std::vector<double>& c)
 {
   double ss = 0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
-    ss += std::pow(a[i] - b[i], 2);
-  return std::sqrt(ss / std::max<std::size_t>(a.size(), 1));
+  for (double x : c)
+    ss += x * x;
+  return std::sqrt(ss / std::max<std::size_t>(c.size(), 1));
 }
 
 /// RMS change of a landmark over its three components [m].
 double landmark_change(const std::array<double, 3>& a, const std::array<double, 3>& b)
 {
-  return rms_change({a[0], a[1], a[2]}, {b[0], b[1], b[2]});
+  return rms(difference({a[0], a[1], a[2]}, {b[0], b[1], b[2]}));
 }
 } // namespace
 
@@ -87,9 +96,8 @@ std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, con
   for (std::size_t p = 0; p < np; ++p)
     if (ef.solved[p])
     {
-      d.mesh_error[p] = rms_change(ef.distances[p], ec.distances[p]);
-      for (std::size_t i = 0; i < ef.distances[p].size(); ++i)
-        change[p].push_back(ef.distances[p][i] - ec.distances[p][i]);
+      change[p] = difference(ec.distances[p], ef.distances[p]);
+      d.mesh_error[p] = rms(change[p]);
       landmark_solved[p] = rec.postures[p].nipple.has_value();
       if (landmark_solved[p])
         landmark_error[p] = landmark_change(ef.nipple_error[p], ec.nipple_error[p]);
@@ -109,7 +117,8 @@ std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, con
                 "leave it out", rec.postures[p].name);
     }
   std::vector<double> sigma;
-  d.local_floor_max = d.mesh_error;
+  if (o.noise_floor == NoiseFloor::local)
+    d.local_floor_max = d.mesh_error; // an unsolved posture's points keep the posture's floor
   for (std::size_t p = 0; p < np; ++p)
   {
     d.sigma_eff[p] = std::hypot(rec.noise_sigma, d.mesh_error[p]);

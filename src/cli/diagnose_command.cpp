@@ -39,7 +39,7 @@ void add_mesh_options(CLI::App* app, calibration::DiagnoseOptions& d)
          "how the numerical noise floor is spread: posture (one per posture, its RMS change) or "
          "local (per point, over its neighbourhood)")
       ->check(CLI::IsMember({"posture", "local"}))
-      ->option_text("posture|local (default: posture)");
+      ->option_text("posture|local (default: local)");
 }
 } // namespace
 
