@@ -1,13 +1,19 @@
 // The forward map of a diagnosis (point_evaluator.hpp): a posture left out
 // adds nothing, a posture that cannot be solved is marked, not thrown, and
 // its noise floor is the largest measured one (mesh_error.hpp); on posture
-// groups the group that failed logs why.
+// groups the group that failed logs why. The held-out prediction solved
+// (solved_held_out.hpp) follows the step fitted on the other postures and not
+// the held-out posture's own Jacobian.
 #include "case_groups.hpp"
 #include "errors.hpp"
+#include "evidence.hpp"
+#include "fit_state.hpp"
 #include "fixtures.hpp"
+#include "linearised_refit.hpp"
 #include "mesh_error.hpp"
 #include "point_evaluator.hpp"
 #include "recording.hpp"
+#include "solved_held_out.hpp"
 #include <gtest/gtest.h>
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
@@ -32,6 +38,21 @@ Recording standing_and_supine()
     rec.postures.push_back(p);
   }
   return rec;
+}
+
+/// A fit of tissue.mu at case `c` as a diagnosis keeps it: its value, the
+/// whitened residuals and dr/d ln mu by a forward difference of step h.
+FitState mu_fit(PointEvaluator& ev, const Config& c, const std::vector<Free>& frees, double h)
+{
+  FitState s;
+  s.names = {"mu"};
+  s.values = {c.number("tissue.mu")};
+  const PointEvaluation e0 = ev(c), e1 = ev(config_at(c, frees, {std::log(s.values[0]) + h}));
+  s.r = e0.r;
+  s.distances = e0.distances;
+  for (std::size_t i = 0; i < s.r.size(); ++i)
+    s.J.push_back({(e1.r[i] - e0.r[i]) / h});
+  return s;
 }
 
 /// A tissue far too soft for its load (tests/test_physics.cpp): standing fails.
@@ -149,4 +170,41 @@ TEST(PointEvaluator, UnsolvedPostureTakesTheLargestMeasuredFloor)
   EXPECT_EQ(floor, (std::vector<double>{1e-4, 3e-4, 3e-4, 3e-4}));
   std::vector<double> none = {0.0, 0.0};
   EXPECT_FALSE(fill_unsolved(none, {false, false}));
+}
+
+// Posture k held out: delta = -sum_{-k} J r / sum_{-k} J^2 (one parameter),
+// the case at mu exp(delta) solved, chi2 over k's rows. A Jacobian of k's own
+// rows 1000 times too large ruins the linearised prediction, not the solved one.
+TEST(PointEvaluator, HeldOutPredictionSolvedDoesNotUseTheHeldOutPosturesJacobian)
+{
+  const Recording rec = standing_and_supine();
+  const Config c = fixtures::coarse_case();
+  PointEvaluator ev(rec, MPI_COMM_WORLD);
+  const auto frees = frees_from_fit("mu", c);
+  const FitState s = mu_fit(ev, c, frees, 0.05);
+  const auto rows = rows_by_posture(s, rec);
+  const auto linear = held_out_chi2(s, rec);
+  const auto solved = solved_held_out_chi2(ev, c, frees, s, rec, linear);
+  ASSERT_EQ(solved.size(), 2u);
+  EXPECT_FALSE(ev.excluded(0));
+  EXPECT_FALSE(ev.excluded(1));
+
+  double jr = 0, jj = 0;
+  for (std::size_t i : rows[0])
+  {
+    jr += s.J[i][0] * s.r[i];
+    jj += s.J[i][0] * s.J[i][0];
+  }
+  ASSERT_GT(std::abs(jr / jj), 1e-3); // the step is not trivially zero
+  const auto e = ev(config_at(c, frees, {std::log(s.values[0]) - jr / jj}));
+  double by_hand = 0;
+  for (std::size_t i : rows[1])
+    by_hand += e.r[i] * e.r[i];
+  EXPECT_NEAR(solved[1], by_hand, 1e-6 * by_hand);
+
+  FitState broken = s;
+  for (std::size_t i : rows[1])
+    broken.J[i][0] *= 1000;
+  EXPECT_GT(held_out_chi2(broken, rec)[1], 10 * solved[1]);
+  EXPECT_NEAR(solved_held_out_chi2(ev, c, frees, broken, rec, linear)[1], solved[1], 1e-6 * solved[1]);
 }

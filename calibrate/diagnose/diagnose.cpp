@@ -15,6 +15,7 @@
 #include "model_form.hpp"
 #include "residual_regions.hpp"
 #include "separation.hpp"
+#include "solved_held_out.hpp"
 #include "timer.hpp"
 #include <algorithm>
 #include <cmath>
@@ -204,8 +205,8 @@ std::size_t score_candidates(Search& s, Round& rd)
 
 /// The evidence of a refit that needs no further solve: LR, effect in mm,
 /// interval edge, held-out postures; judged without the refinement check.
-Evidence cheap_evidence(const Search& s, const Candidate& cand, const FitState& after, double lr,
-                        double critical)
+Evidence cheap_evidence(Search& s, const Candidate& cand, const std::vector<Free>& frees,
+                        const FitState& after, double lr, double critical)
 {
   Evidence e;
   e.candidate = cand.name;
@@ -219,6 +220,11 @@ Evidence cheap_evidence(const Search& s, const Candidate& cand, const FitState& 
   for (std::size_t k = 0; k < without.size() && k < with.size(); ++k)
     e.held_out_gain.push_back(without[k] - with[k]);
   judge(e, s.o, s.rec.noise_sigma);
+  if (held_out_refusal(e, s.o)) // a refusal stands on solved predictions (solved_held_out.hpp)
+  {
+    solve_held_out_gains(s.ev, {s.current, s.frees, s.state}, {s.current, frees, after}, s.rec, e);
+    judge(e, s.o, s.rec.noise_sigma);
+  }
   return e;
 }
 
@@ -304,7 +310,7 @@ std::vector<Refit> refit_candidates(Search& s, Round& rd, double level)
               "allowance {:.1f})",
               cand.name, r.lr, r.critical, level, sc.mesh_allowance);
     rd.refits.push_back({cand.name, r.lr});
-    rd.evidence.push_back(cheap_evidence(s, cand, r.after, r.lr, r.critical));
+    rd.evidence.push_back(cheap_evidence(s, cand, r.frees, r.after, r.lr, r.critical));
     refits.push_back(std::move(r));
   }
   // Largest margin of LR over its critical value first: the score is a

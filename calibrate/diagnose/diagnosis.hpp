@@ -103,6 +103,8 @@ struct Evidence
   double effect_rms_mm_all = 0;                ///< RMS over all points
   double effect_at_null_edge_mm = 0;           ///< effect at the interval end nearest q = 0
   std::vector<double> held_out_gain;           ///< per posture: chi2_k without - with the term
+  bool held_out_solved = false;                ///< held_out_gain solved (else linearised)
+  std::vector<double> held_out_gain_linearised; ///< the linearised gains (held_out_solved)
   double misfit_before = 0;                    ///< chi2 - dof of the model before the term
   int terms_before = 0;                        ///< terms found before this one
   bool refinement_checked = false;

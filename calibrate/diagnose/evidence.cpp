@@ -60,6 +60,26 @@ double continuum_lr(double lr_h, double lr_fine, double ratio, double order)
   return s0 > 0 ? s0 * s0 : 0.0;
 }
 
+std::optional<std::string> held_out_refusal(const Evidence& e, const DiagnoseOptions& o)
+{
+  // The summed chi2 gain is positive, and so is the gain of more than half
+  // of the postures (one posture cannot carry a stand-in).
+  const double gain = std::accumulate(e.held_out_gain.begin(), e.held_out_gain.end(), 0.0);
+  const auto improved = std::count_if(e.held_out_gain.begin(), e.held_out_gain.end(),
+                                      [](double g) { return g > 0; });
+  const auto postures = static_cast<long>(e.held_out_gain.size());
+  const char* how = e.held_out_solved ? "solved" : "linearised";
+  if (!o.held_out_check || postures == 0)
+    return std::nullopt;
+  if (!(gain > 0))
+    return fmt::format("it does not improve the prediction of held-out postures "
+                       "(chi2 gain {:.1f}, {})", gain, how);
+  if (2 * improved <= postures)
+    return fmt::format("it improves the prediction of only {} of {} held-out postures "
+                       "(a term must improve more than half of them; {})", improved, postures, how);
+  return std::nullopt;
+}
+
 void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
 {
   e.failed.clear();
@@ -73,19 +93,8 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
     e.failed.push_back(fmt::format("its 95 % interval reaches the null: at the interval's end the "
                                    "effect is {:.3f} mm, below {:.3f} mm",
                                    e.effect_at_null_edge_mm, min_mm));
-  // Held-out postures: the summed chi2 gain is positive, and so is the gain
-  // of more than half of the postures (one posture cannot carry a stand-in).
-  const double gain = std::accumulate(e.held_out_gain.begin(), e.held_out_gain.end(), 0.0);
-  const auto improved = std::count_if(e.held_out_gain.begin(), e.held_out_gain.end(),
-                                      [](double g) { return g > 0; });
-  const auto postures = static_cast<long>(e.held_out_gain.size());
-  if (o.held_out_check && postures > 0 && !(gain > 0))
-    e.failed.push_back(fmt::format("it does not improve the prediction of held-out postures "
-                                   "(chi2 gain {:.1f})", gain));
-  else if (o.held_out_check && postures > 0 && 2 * improved <= postures)
-    e.failed.push_back(fmt::format("it improves the prediction of only {} of {} held-out postures "
-                                   "(a term must improve more than half of them)",
-                                   improved, postures));
+  if (auto why = held_out_refusal(e, o))
+    e.failed.push_back(*why);
   // Model-form share: LR >= share (chi2 - dof) of the model before the term
   // (a stricter share after a term was found: its shape error is in that misfit).
   const double misfit_share = e.misfit_before > 0 ? e.lr / e.misfit_before : 1.0;
@@ -109,7 +118,7 @@ std::string evidence_text(const Evidence& e)
   for (std::size_t p = 0; p < e.effect_rms_mm.size(); ++p)
     t += fmt::format("{} {:.3f}/max {:.3f}", p ? "," : "", e.effect_rms_mm[p], e.effect_max_mm[p]);
   t += fmt::format("), {:.3f} mm at the interval's end nearest the null", e.effect_at_null_edge_mm);
-  t += "; held-out chi2 gain per posture";
+  t += fmt::format("; held-out chi2 gain per posture ({})", e.held_out_solved ? "solved" : "linearised");
   for (std::size_t p = 0; p < e.held_out_gain.size(); ++p)
     t += fmt::format("{} {:.1f}", p ? "," : "", e.held_out_gain[p]);
   if (e.misfit_before > 0)
@@ -140,6 +149,9 @@ nlohmann::json to_json(const Evidence& e)
                       {"misfit_before", e.misfit_before},
                       {"accepted", e.accepted},
                       {"rejected_because", e.failed}};
+  if (e.held_out_solved)
+    j["held_out_chi2_gain_linearised"] = e.held_out_gain_linearised;
+  j["held_out_solved"] = e.held_out_solved;
   if (e.refinement_checked)
   {
     j["likelihood_ratio_fine"] = e.lr_fine;

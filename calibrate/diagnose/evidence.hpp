@@ -4,6 +4,7 @@
 // interval reaches towards the null, whether it predicts postures it was not
 // fitted on, and whether its likelihood ratio survives mesh refinement.
 #include "diagnosis.hpp"
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,11 @@ std::vector<double> held_out_chi2(const FitState& s, const Recording& rec);
 /// extrapolated as an error of order p,
 ///   sqrt(LR_0) = sqrt(LR_f) + (sqrt(LR_f) - sqrt(LR_h)) / (r^p - 1).
 double continuum_lr(double lr_h, double lr_fine, double ratio, double order);
+
+/// The held-out rule (DiagnoseOptions::held_out_check): why it refuses `e`
+/// (its summed held-out chi2 gain is not positive, or no more than half of
+/// the postures gain), or none.
+std::optional<std::string> held_out_refusal(const Evidence& e, const DiagnoseOptions& o);
 
 /// The acceptance rules in force (DiagnoseOptions) applied to `e`: fills
 /// e.failed with a plain-words reason per failed rule.

@@ -8,8 +8,6 @@
 
 namespace breastsim::calibration
 {
-namespace
-{
 Config config_at(const Config& base, const std::vector<Free>& frees, const std::vector<double>& y)
 {
   Config c = base;
@@ -18,6 +16,9 @@ Config config_at(const Config& base, const std::vector<Free>& frees, const std::
   c.validate();
   return c;
 }
+
+namespace
+{
 
 /// RMS and largest |distance| of each posture.
 void distance_statistics(FitState& s)

@@ -26,6 +26,8 @@ struct Free
 std::vector<Free> frees_from_fit(const std::string& list, const Config& c);
 /// A candidate's q, within [1e-4, 1e3] x its typical value.
 Free free_candidate(const Candidate& cand);
+/// `base` with each of `frees` set to exp(y_i).
+Config config_at(const Config& base, const std::vector<Free>& frees, const std::vector<double>& y);
 /// ln of each free parameter's start, clamped to its bounds.
 std::vector<double> start_values(const std::vector<Free>& frees);
 
