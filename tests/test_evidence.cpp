@@ -77,6 +77,7 @@ TEST(Evidence, EffectSizeInMillimetres)
   EXPECT_NEAR(e.effect_max_mm[0], 0.4, 1e-12);
   EXPECT_NEAR(e.effect_rms_mm[1], 0.0, 1e-12);
   EXPECT_NEAR(e.effect_rms_mm_all, std::sqrt(0.25 / 4), 1e-12);
+  EXPECT_NEAR(e.effect_rms_mm_largest, e.effect_rms_mm[0], 1e-12); // the posture it changes most
   // The interval's lower end at a quarter of q: a quarter of the effect.
   with.names = {"q"};
   with.values = {4.0};
@@ -103,7 +104,7 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   e.candidate = "base_springs";
   e.lr = 400;
   e.critical = 190;
-  e.effect_rms_mm_all = 0.111;
+  e.effect_rms_mm_all = e.effect_rms_mm_largest = 0.111;
   e.effect_at_null_edge_mm = 0.096;
   e.held_out_gain = {10, -20};
   judge(e, o, 0.5e-3);
@@ -140,6 +141,38 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   EXPECT_TRUE(e.failed.empty());
 }
 
+// The effect is judged in the posture the term changes most: a gland that
+// changes standing by 0.078 mm RMS and supine by 0.037 (val_gland_core_weak,
+// interval end at 0.823 q_hat) holds at 0.1 sigma = 0.05 mm although its RMS
+// over all points, 0.0587 mm, has its interval end at 0.048.
+TEST(Evidence, EffectIsJudgedInThePostureItChangesMost)
+{
+  DiagnoseOptions o;
+  o.min_misfit_share = 0;
+  Evidence e;
+  e.lr = 109.4;
+  e.critical = 22.9;
+  e.held_out_gain = {59.9, -2.8, 13.7, 37.0};
+  FitState without, with;
+  without.distances = {{0.0, 0.0}, {0.0, 0.0}};
+  with.distances = {{7.8e-5, -7.8e-5}, {3.7e-5, -3.7e-5}};
+  effect_size(without, with, e);
+  with.names = {"q"};
+  with.values = {1.0};
+  with.uncertainty.interval = {{0.823, 1.2}};
+  e.effect_at_null_edge_mm = effect_at_interval_edge(with, "q", e.effect_rms_mm_largest);
+  EXPECT_NEAR(e.effect_at_null_edge_mm, 0.823 * 0.078, 1e-12);
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty()) << e.failed[0];
+  // The same effect spread evenly over both postures at 0.0587 mm does not hold.
+  with.distances = {{5.87e-5, -5.87e-5}, {5.87e-5, -5.87e-5}};
+  effect_size(without, with, e);
+  e.effect_at_null_edge_mm = effect_at_interval_edge(with, "q", e.effect_rms_mm_largest);
+  judge(e, o, 0.5e-3);
+  ASSERT_EQ(e.failed.size(), 1u);
+  EXPECT_NE(e.failed[0].find("interval reaches the null"), std::string::npos) << e.failed[0];
+}
+
 // A positive sum carried by one posture is not enough: the false skin of
 // base_springs_weak_3 (chest-wall set, graded mesh) improved 2 of 4.
 TEST(Evidence, HeldOutGainMustCoverMostPostures)
@@ -148,7 +181,7 @@ TEST(Evidence, HeldOutGainMustCoverMostPostures)
   Evidence e;
   e.lr = 125.5;
   e.critical = 13.9;
-  e.effect_rms_mm_all = e.effect_at_null_edge_mm = 0.068;
+  e.effect_rms_mm_all = e.effect_rms_mm_largest = e.effect_at_null_edge_mm = 0.068;
   e.held_out_gain = {28.0, -30.2, -6.2, 196.3};
   judge(e, o, 0.5e-3);
   ASSERT_EQ(e.failed.size(), 1u);

@@ -67,11 +67,15 @@ def recordings(which="main"):
     """The benchmark ("main", 42 recordings), the validation set
     ("validation", 12 recordings: new shapes, seeds and materials, made after
     the rules' thresholds were chosen on the main set) or the hold-out set
-    ("holdout", 12: made after the validation set's verdicts were seen)."""
+    ("holdout", 12: made after the validation set's verdicts were seen) or
+    the confirmation set ("confirm", 12: made after the hold-out set's
+    verdicts were seen, to test rule changes chosen on the other three)."""
     if which == "validation":
         return validation_recordings()
     if which == "holdout":
         return holdout_recordings()
+    if which == "confirm":
+        return confirm_recordings()
     out = []
     add = _adder(out, 0)
 
@@ -130,13 +134,29 @@ def holdout_recordings():
     the recordings on which the effect-size threshold decides (made after
     the main and validation sets' evidence was seen, to test a change of
     that threshold out of sample)."""
+    return _controls_and_weak_shapes("hold_", HOLDOUT_OFFSET, 41)
+
+
+CONFIRM_OFFSET = 110  # material/posture cycle and seeds 1810+: none shared with the other sets
+
+
+def confirm_recordings():
+    """As the hold-out set, with new shapes, seeds and materials: defined on
+    2026-12-05 after the three other sets' verdicts were seen, before any
+    rule was run on it."""
+    return _controls_and_weak_shapes("conf_", CONFIRM_OFFSET, 43)
+
+
+def _controls_and_weak_shapes(prefix, offset, shape_seed):
+    """4 controls and, per candidate, two shapes at the weak strength, named
+    PREFIX..., their material and seed from position `offset` of the cycle."""
     out = []
-    add = _adder(out, HOLDOUT_OFFSET)
+    add = _adder(out, offset)
 
     for i in range(1, 5):
-        add(f"hold_control_{i:02d}", "control", [])
+        add(f"{prefix}control_{i:02d}", "control", [])
     for cand, effect in sorted(BY_CANDIDATE.items()):
         for k in (1, 2):
-            pattern = _pattern(effect, [41, len(cand), ord(cand[0]), k], 1 + k)
-            add(f"hold_{cand}_weak_{k}", "weak", [(effect, pattern)])
+            pattern = _pattern(effect, [shape_seed, len(cand), ord(cand[0]), k], 1 + k)
+            add(f"{prefix}{cand}_weak_{k}", "weak", [(effect, pattern)])
     return out

@@ -8,8 +8,8 @@ diagnosis.json files: the data for choosing a decision rule.
 
 Per refit (round, candidate): LR and its critical value, the margin
 LR / critical, the misfit share LR / (chi2 - dof) of the model before it,
-the effect RMS over all points and at the interval's end nearest the null
-[mm], the held-out postures' chi2 gains (their sum relative to LR, and how
+the effect RMS over all points, in the posture it changes most and at the
+interval's end nearest the null [mm], the held-out postures' chi2 gains (their sum relative to LR, and how
 many are positive), the refinement check's LR on the finer mesh and in the
 continuum where made, accepted or not and why. Then, for the accepted and
 for the refused refits, the range of each measure over the genuine and the
@@ -27,6 +27,7 @@ MEASURES = {
     "margin": lambda e: e["likelihood_ratio"] / e["critical_value"],
     "share": lambda e: e["likelihood_ratio"] / e["misfit_before"] if e.get("misfit_before", 0) > 0 else None,
     "effect_mm": lambda e: e["effect_rms_mm_all"],
+    "posture_effect_mm": lambda e: e.get("effect_rms_mm_largest_posture", max(e.get("effect_rms_mm") or [0.0])),
     "edge_mm": lambda e: e["effect_at_null_edge_mm"],
     "held_out_over_lr": lambda e: sum(e["held_out_chi2_gain"]) / e["likelihood_ratio"]
     if e.get("held_out_chi2_gain") else None,
