@@ -215,7 +215,7 @@ Evidence cheap_evidence(Search& s, const Candidate& cand, const std::vector<Free
   e.misfit_before = s.state.chi2 - s.state.dof;
   e.terms_before = s.found;
   effect_size(s.state, after, e);
-  e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, e.effect_rms_mm_largest);
+  e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, e.effect_rms_mm_all);
   const auto without = held_out_chi2(s.state, s.rec), with = held_out_chi2(after, s.rec);
   for (std::size_t k = 0; k < without.size() && k < with.size(); ++k)
     e.held_out_gain.push_back(without[k] - with[k]);

@@ -49,9 +49,8 @@ struct DiagnoseOptions
   /// independent-truth control) are not averaged away.
   NoiseFloor noise_floor = NoiseFloor::local;
   /// Practical significance: an accepted term must change the model surface
-  /// by at least this fraction of the noise sigma in the posture it changes
-  /// most (RMS over that posture's points), also at the end of its 95 %
-  /// interval nearest the null (0: off).
+  /// by at least this fraction of the noise sigma (RMS over all points), also
+  /// at the end of its 95 % interval nearest the null (0: off).
   double min_effect = 0.1;
   /// Refinement check: an accepted term's LR must stay above the critical
   /// value on the mesh `mesh_ratio` times finer and extrapolated to the
@@ -102,8 +101,8 @@ struct Evidence
   double lr = 0, critical = 0;                 ///< LR and its critical value (with the mesh allowance)
   std::vector<double> effect_rms_mm, effect_max_mm; ///< per posture
   double effect_rms_mm_all = 0;                ///< RMS over all points
-  double effect_rms_mm_largest = 0;            ///< largest per-posture RMS (the posture it changes most)
-  double effect_at_null_edge_mm = 0;           ///< effect_rms_mm_largest at the interval end nearest q = 0
+  double effect_rms_mm_largest = 0;            ///< largest per-posture RMS (reported, not judged)
+  double effect_at_null_edge_mm = 0;           ///< effect_rms_mm_all at the interval end nearest q = 0
   std::vector<double> held_out_gain;           ///< per posture: chi2_k without - with the term
   bool held_out_solved = false;                ///< held_out_gain solved (else linearised)
   std::vector<double> held_out_gain_linearised; ///< the linearised gains (held_out_solved)

@@ -89,10 +89,9 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
   if (!(e.lr > e.critical))
     e.failed.push_back(fmt::format("its LR {:.1f} is below the critical value {:.1f}", e.lr, e.critical));
   const double min_mm = 1e3 * o.min_effect * noise_sigma;
-  if (o.min_effect > 0 && e.effect_rms_mm_largest < min_mm)
-    e.failed.push_back(fmt::format("its effect, RMS {:.3f} mm in the posture it changes most, is "
-                                   "below {:g} x the noise ({:.3f} mm)",
-                                   e.effect_rms_mm_largest, o.min_effect, min_mm));
+  if (o.min_effect > 0 && e.effect_rms_mm_all < min_mm)
+    e.failed.push_back(fmt::format("its effect, RMS {:.3f} mm, is below {:g} x the noise ({:.3f} mm)",
+                                   e.effect_rms_mm_all, o.min_effect, min_mm));
   else if (o.min_effect > 0 && e.effect_at_null_edge_mm < min_mm)
     e.failed.push_back(fmt::format("its 95 % interval reaches the null: at the interval's end the "
                                    "effect is {:.3f} mm, below {:.3f} mm",
@@ -117,9 +116,9 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
 
 std::string evidence_text(const Evidence& e)
 {
-  std::string t = fmt::format("  {}: LR {:.1f} (critical {:.1f}); effect RMS {:.3f} mm in the posture "
-                              "it changes most, {:.3f} mm over all points (per posture",
-                              e.candidate, e.lr, e.critical, e.effect_rms_mm_largest, e.effect_rms_mm_all);
+  std::string t = fmt::format("  {}: LR {:.1f} (critical {:.1f}); effect RMS {:.3f} mm over all points, "
+                              "{:.3f} mm in the posture it changes most (per posture",
+                              e.candidate, e.lr, e.critical, e.effect_rms_mm_all, e.effect_rms_mm_largest);
   for (std::size_t p = 0; p < e.effect_rms_mm.size(); ++p)
     t += fmt::format("{} {:.3f}/max {:.3f}", p ? "," : "", e.effect_rms_mm[p], e.effect_max_mm[p]);
   t += fmt::format("), {:.3f} mm at the interval's end nearest the null", e.effect_at_null_edge_mm);

@@ -76,8 +76,8 @@ Command add_diagnose_command(CLI::App& root)
                   "critical value with the mesh allowance (0: refit every one)")->capture_default_str();
   add_mesh_options(app, o->d);
   app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
-                                                   "this fraction of the noise (RMS in the posture it "
-                                                   "changes most), also at its interval's end (0: off)")->capture_default_str();
+                                                   "this fraction of the noise (RMS), also at its "
+                                                   "interval's end (0: off)")->capture_default_str();
   app->add_option("--min-misfit-share", o->d.min_misfit_share,
                   "an accepted term must explain this fraction of the misfit (chi2 - dof) of the "
                   "model before it (0: off)")->capture_default_str();
