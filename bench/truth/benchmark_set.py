@@ -69,13 +69,17 @@ def recordings(which="main"):
     the rules' thresholds were chosen on the main set) or the hold-out set
     ("holdout", 12: made after the validation set's verdicts were seen) or
     the confirmation set ("confirm", 12: made after the hold-out set's
-    verdicts were seen, to test rule changes chosen on the other three)."""
+    verdicts were seen, to test rule changes chosen on the other three) or
+    the effect-rule set ("effect", 16: made to test the practical-significance
+    measure once more, where it can change a verdict)."""
     if which == "validation":
         return validation_recordings()
     if which == "holdout":
         return holdout_recordings()
     if which == "confirm":
         return confirm_recordings()
+    if which == "effect":
+        return effect_rule_recordings()
     out = []
     add = _adder(out, 0)
 
@@ -147,16 +151,28 @@ def confirm_recordings():
     return _controls_and_weak_shapes("conf_", CONFIRM_OFFSET, 43)
 
 
-def _controls_and_weak_shapes(prefix, offset, shape_seed):
-    """4 controls and, per candidate, two shapes at the weak strength, named
-    PREFIX..., their material and seed from position `offset` of the cycle."""
+EFFECT_OFFSET = 140  # material/posture cycle and seeds 1840+: none shared with the other sets
+
+
+def effect_rule_recordings():
+    """4 controls and, per candidate, three new shapes at the weak strength
+    (the recordings on which the effect measure decides): defined on
+    2026-12-05 with its test written in docs/DIAGNOSE.md, before any
+    recording of it was generated."""
+    return _controls_and_weak_shapes("eff_", EFFECT_OFFSET, 47, shapes=3)
+
+
+def _controls_and_weak_shapes(prefix, offset, shape_seed, shapes=2):
+    """4 controls and, per candidate, `shapes` shapes at the weak strength,
+    named PREFIX..., their material and seed from position `offset` of the
+    cycle."""
     out = []
     add = _adder(out, offset)
 
     for i in range(1, 5):
         add(f"{prefix}control_{i:02d}", "control", [])
     for cand, effect in sorted(BY_CANDIDATE.items()):
-        for k in (1, 2):
+        for k in range(1, shapes + 1):
             pattern = _pattern(effect, [shape_seed, len(cand), ord(cand[0]), k], 1 + k)
             add(f"{prefix}{cand}_weak_{k}", "weak", [(effect, pattern)])
     return out

@@ -2,7 +2,8 @@
 """The three independent-truth benchmark sets (bench/truth/benchmark_set.py)
 share no recording name and no noise seed, and have the documented sizes:
 main 42 (14 controls), validation 12 (2 controls), holdout and confirm 12
-each (4 controls, two weak shapes per candidate); every lambda/mu of each set is in [2, 10].
+each (4 controls, two weak shapes per candidate), effect 16 (4 controls,
+three weak shapes per candidate); every lambda/mu of each set is in [2, 10].
 
 Run: /usr/bin/python3 tests/truth/test_benchmark_sets.py SOURCE_DIR
 """
@@ -13,7 +14,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(sys.argv[1]) / "bench" / "truth"))
 import benchmark_set  # noqa: E402
 
-SIZES = {"main": (42, 14), "validation": (12, 2), "holdout": (12, 4), "confirm": (12, 4)}
+SIZES = {"main": (42, 14), "validation": (12, 2), "holdout": (12, 4), "confirm": (12, 4), "effect": (16, 4)}
 
 
 def main():
@@ -28,10 +29,10 @@ def main():
             seeds[r["seed"]] += 1
             ratio = r["material"]["lambda"] / r["material"]["mu"]
             assert 2.0 <= ratio <= 10.0, f"{r['name']}: lambda/mu {ratio}"
-    for which in ("holdout", "confirm"):
+    for which, shapes in (("holdout", 2), ("confirm", 2), ("effect", 3)):
         recs = benchmark_set.recordings(which)
         per_candidate = Counter(r["name"].rsplit("_weak_", 1)[0] for r in recs if r["strength_class"] == "weak")
-        assert sorted(per_candidate.values()) == [2, 2, 2, 2], (which, per_candidate)
+        assert sorted(per_candidate.values()) == [shapes] * 4, (which, per_candidate)
     shared = [n for n, k in names.items() if k > 1] + [s for s, k in seeds.items() if k > 1]
     assert not shared, f"shared between sets: {shared}"
     print("benchmark sets: OK")
