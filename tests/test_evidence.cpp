@@ -145,8 +145,8 @@ TEST(Evidence, JudgeNamesEachFailedRule)
 // postures by 0.0784, 0.0375, 0.042 and 0.0668 mm RMS (val_gland_core_weak,
 // interval end at 0.823 q_hat) has an RMS over all points of 0.0587 mm and
 // its interval end at 0.048, below 0.1 sigma = 0.05 mm. The posture it
-// changes most is reported, not judged.
-TEST(Evidence, EffectIsJudgedOverAllPoints)
+// changes most is judged only with --effect-measure largest-posture.
+TEST(Evidence, EffectIsJudgedOverAllPointsByDefault)
 {
   DiagnoseOptions o;
   o.min_misfit_share = 0;
@@ -169,6 +169,20 @@ TEST(Evidence, EffectIsJudgedOverAllPoints)
   judge(e, o, 0.5e-3);
   ASSERT_EQ(e.failed.size(), 1u);
   EXPECT_NE(e.failed[0].find("interval reaches the null"), std::string::npos) << e.failed[0];
+  // Judged in the posture it changes most (--effect-measure largest-posture),
+  // its interval end is 0.823 x 0.0784 = 0.0645 mm: it holds.
+  DiagnoseOptions largest = o;
+  largest.effect_measure = EffectMeasure::largest_posture;
+  EXPECT_NEAR(judged_effect_mm(e, largest.effect_measure), 0.0784, 1e-12);
+  Evidence e_largest = e;
+  e_largest.effect_at_null_edge_mm = effect_at_interval_edge(with, "q", judged_effect_mm(e, largest.effect_measure));
+  judge(e_largest, largest, 0.5e-3);
+  EXPECT_TRUE(e_largest.failed.empty()) << e_largest.failed[0];
+  // Below 0.05 mm in every posture it fails either way, and says which measure.
+  e_largest.effect_rms_mm_largest = 0.04;
+  judge(e_largest, largest, 0.5e-3);
+  ASSERT_EQ(e_largest.failed.size(), 1u);
+  EXPECT_NE(e_largest.failed[0].find("in the posture it changes most"), std::string::npos) << e_largest.failed[0];
   // An effect of 0.0784 mm in every posture holds.
   with.distances = {{7.84e-5, -7.84e-5}, {7.84e-5, -7.84e-5}, {7.84e-5, -7.84e-5}, {7.84e-5, -7.84e-5}};
   effect_size(without, with, e);

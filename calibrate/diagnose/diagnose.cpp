@@ -215,7 +215,7 @@ Evidence cheap_evidence(Search& s, const Candidate& cand, const std::vector<Free
   e.misfit_before = s.state.chi2 - s.state.dof;
   e.terms_before = s.found;
   effect_size(s.state, after, e);
-  e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, e.effect_rms_mm_all);
+  e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, judged_effect_mm(e, s.o.effect_measure));
   const auto without = held_out_chi2(s.state, s.rec), with = held_out_chi2(after, s.rec);
   for (std::size_t k = 0; k < without.size() && k < with.size(); ++k)
     e.held_out_gain.push_back(without[k] - with[k]);
@@ -459,6 +459,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   d.mesh_error.assign(rec.postures.size(), 0.0);
   d.sigma_eff.assign(rec.postures.size(), rec.noise_sigma);
   d.noise_floor = o.noise_floor;
+  d.effect_measure = o.effect_measure;
   Search s(rec, current, o, comm);
   fit_current_model(s, d);
   for (int round = 0; round < o.max_rounds; ++round)

@@ -19,6 +19,13 @@ enum class NoiseFloor
   local    ///< per point: the RMS change over its neighbourhood
 };
 
+/// Which effect of a term the practical-significance rule judges.
+enum class EffectMeasure
+{
+  all,            ///< the RMS change over all points of all postures
+  largest_posture ///< the RMS change in the posture the term changes most
+};
+
 struct DiagnoseOptions
 {
   std::string fit = "mu";              ///< current-model parameters refitted (--fit names)
@@ -49,9 +56,10 @@ struct DiagnoseOptions
   /// independent-truth control) are not averaged away.
   NoiseFloor noise_floor = NoiseFloor::local;
   /// Practical significance: an accepted term must change the model surface
-  /// by at least this fraction of the noise sigma (RMS over all points), also
-  /// at the end of its 95 % interval nearest the null (0: off).
+  /// by at least this fraction of the noise sigma (RMS, as effect_measure
+  /// says), also at the end of its 95 % interval nearest the null (0: off).
   double min_effect = 0.1;
+  EffectMeasure effect_measure = EffectMeasure::all;
   /// Refinement check: an accepted term's LR must stay above the critical
   /// value on the mesh `mesh_ratio` times finer and extrapolated to the
   /// continuum (evidence.hpp, continuum_lr) with this order (0: off).
@@ -101,8 +109,8 @@ struct Evidence
   double lr = 0, critical = 0;                 ///< LR and its critical value (with the mesh allowance)
   std::vector<double> effect_rms_mm, effect_max_mm; ///< per posture
   double effect_rms_mm_all = 0;                ///< RMS over all points
-  double effect_rms_mm_largest = 0;            ///< largest per-posture RMS (reported, not judged)
-  double effect_at_null_edge_mm = 0;           ///< effect_rms_mm_all at the interval end nearest q = 0
+  double effect_rms_mm_largest = 0;            ///< largest per-posture RMS (the posture it changes most)
+  double effect_at_null_edge_mm = 0;           ///< the judged effect at the interval end nearest q = 0
   std::vector<double> held_out_gain;           ///< per posture: chi2_k without - with the term
   bool held_out_solved = false;                ///< held_out_gain solved (else linearised)
   std::vector<double> held_out_gain_linearised; ///< the linearised gains (held_out_solved)
@@ -210,6 +218,7 @@ struct Diagnosis
   std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
   std::vector<double> local_floor_max; ///< largest e_h,i per posture [m] (empty unless NoiseFloor::local)
   NoiseFloor noise_floor = NoiseFloor::local;
+  EffectMeasure effect_measure = EffectMeasure::all;
   /// Postures the fitted current model cannot be solved in on the finer
   /// mesh: their e_h is the largest of the others', the refinement checks
   /// leave them out, and the final values are the diagnosis mesh's unless

@@ -83,15 +83,29 @@ std::optional<std::string> held_out_refusal(const Evidence& e, const DiagnoseOpt
   return std::nullopt;
 }
 
+double judged_effect_mm(const Evidence& e, EffectMeasure measure)
+{
+  return measure == EffectMeasure::largest_posture ? e.effect_rms_mm_largest : e.effect_rms_mm_all;
+}
+
+const char* effect_measure_name(EffectMeasure measure)
+{
+  return measure == EffectMeasure::largest_posture ? "largest-posture" : "all";
+}
+
 void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
 {
   e.failed.clear();
   if (!(e.lr > e.critical))
     e.failed.push_back(fmt::format("its LR {:.1f} is below the critical value {:.1f}", e.lr, e.critical));
   const double min_mm = 1e3 * o.min_effect * noise_sigma;
-  if (o.min_effect > 0 && e.effect_rms_mm_all < min_mm)
-    e.failed.push_back(fmt::format("its effect, RMS {:.3f} mm, is below {:g} x the noise ({:.3f} mm)",
-                                   e.effect_rms_mm_all, o.min_effect, min_mm));
+  const double effect = judged_effect_mm(e, o.effect_measure);
+  if (o.min_effect > 0 && effect < min_mm)
+    e.failed.push_back(fmt::format("its effect, RMS {:.3f} mm{}, is below {:g} x the noise ({:.3f} mm)",
+                                   effect,
+                                   o.effect_measure == EffectMeasure::largest_posture
+                                       ? " in the posture it changes most" : "",
+                                   o.min_effect, min_mm));
   else if (o.min_effect > 0 && e.effect_at_null_edge_mm < min_mm)
     e.failed.push_back(fmt::format("its 95 % interval reaches the null: at the interval's end the "
                                    "effect is {:.3f} mm, below {:.3f} mm",

@@ -15,6 +15,12 @@ namespace breastsim::calibration
 /// Per posture RMS and max, and RMS over all points.
 void effect_size(const FitState& without, const FitState& with, Evidence& e);
 
+/// The effect the practical-significance rule judges: the RMS over all
+/// points or in the posture the term changes most.
+double judged_effect_mm(const Evidence& e, EffectMeasure measure);
+/// "all" or "largest-posture" (the option's value).
+const char* effect_measure_name(EffectMeasure measure);
+
 /// The part of the effect that the 95 % interval cannot tell from the null:
 /// effect x q_lo / q_hat (the effect is linear in q for small q; q = 0 is the
 /// model without the term).

@@ -40,6 +40,17 @@ void add_mesh_options(CLI::App* app, calibration::DiagnoseOptions& d)
          "local (per point, over its neighbourhood)")
       ->check(CLI::IsMember({"posture", "local"}))
       ->option_text("posture|local (default: local)");
+  app->add_option_function<std::string>(
+         "--effect-measure",
+         [&d](const std::string& v)
+         {
+           d.effect_measure = v == "largest-posture" ? calibration::EffectMeasure::largest_posture
+                                                     : calibration::EffectMeasure::all;
+         },
+         "the effect --min-effect judges: all (RMS over all points) or largest-posture (RMS in "
+         "the posture the term changes most)")
+      ->check(CLI::IsMember({"all", "largest-posture"}))
+      ->option_text("all|largest-posture (default: all)");
 }
 } // namespace
 
@@ -76,8 +87,8 @@ Command add_diagnose_command(CLI::App& root)
                   "critical value with the mesh allowance (0: refit every one)")->capture_default_str();
   add_mesh_options(app, o->d);
   app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
-                                                   "this fraction of the noise (RMS), also at its "
-                                                   "interval's end (0: off)")->capture_default_str();
+                                                   "this fraction of the noise (RMS, see "
+                                                   "--effect-measure), also at its interval's end (0: off)")->capture_default_str();
   app->add_option("--min-misfit-share", o->d.min_misfit_share,
                   "an accepted term must explain this fraction of the misfit (chi2 - dof) of the "
                   "model before it (0: off)")->capture_default_str();
