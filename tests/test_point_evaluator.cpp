@@ -183,9 +183,9 @@ TEST(PointEvaluator, HeldOutPredictionSolvedDoesNotUseTheHeldOutPosturesJacobian
   const auto frees = frees_from_fit("mu", c);
   const FitState s = mu_fit(ev, c, frees, 0.05);
   const auto rows = rows_by_posture(s, rec);
-  const auto linear = held_out_chi2(s, rec);
-  const auto solved = solved_held_out_chi2(ev, c, frees, s, rec, linear);
+  const auto solved = solved_held_out_chi2(ev, {c, frees, s}, rec);
   ASSERT_EQ(solved.size(), 2u);
+  ASSERT_TRUE(solved[0] && solved[1]);
   EXPECT_FALSE(ev.excluded(0));
   EXPECT_FALSE(ev.excluded(1));
 
@@ -200,11 +200,45 @@ TEST(PointEvaluator, HeldOutPredictionSolvedDoesNotUseTheHeldOutPosturesJacobian
   double by_hand = 0;
   for (std::size_t i : rows[1])
     by_hand += e.r[i] * e.r[i];
-  EXPECT_NEAR(solved[1], by_hand, 1e-6 * by_hand);
+  EXPECT_NEAR(*solved[1], by_hand, 1e-6 * by_hand);
 
   FitState broken = s;
   for (std::size_t i : rows[1])
     broken.J[i][0] *= 1000;
-  EXPECT_GT(held_out_chi2(broken, rec)[1], 10 * solved[1]);
-  EXPECT_NEAR(solved_held_out_chi2(ev, c, frees, broken, rec, linear)[1], solved[1], 1e-6 * solved[1]);
+  EXPECT_GT(held_out_chi2(broken, rec)[1], 10 * *solved[1]);
+  EXPECT_NEAR(*solved_held_out_chi2(ev, {c, frees, broken}, rec)[1], *solved[1], 1e-6 * *solved[1]);
+  // A posture the evaluator leaves out is not solved, and stays left out.
+  ev.exclude(0);
+  const auto without_0 = solved_held_out_chi2(ev, {c, frees, s}, rec);
+  EXPECT_FALSE(without_0[0]);
+  EXPECT_NEAR(*without_0[1], *solved[1], 1e-6 * *solved[1]);
+  EXPECT_TRUE(ev.excluded(0));
+  EXPECT_FALSE(ev.excluded(1));
+}
+
+// A gain is solved only where both fits were solved: never a solved chi2
+// against a linearised one.
+TEST(PointEvaluator, SolvedGainsNeverMixSolvedAndLinearised)
+{
+  Evidence e;
+  e.held_out_gain = {5.0, -7.0, 3.0};
+  set_solved_gains({100.0, 80.0, std::nullopt}, {90.0, std::nullopt, 50.0}, e);
+  EXPECT_TRUE(e.held_out_solved);
+  EXPECT_EQ(e.held_out_gain, (std::vector<double>{10.0, -7.0, 3.0}));
+  EXPECT_EQ(e.held_out_gain_linearised, (std::vector<double>{5.0, -7.0, 3.0}));
+}
+
+// y + delta within the bounds, in ln p: ln 2 + 10 stops at ln 30 (hi), the
+// second parameter moves freely, a third without a step stays.
+TEST(FitState, StepWithinBoundsClampsToTheFreesBounds)
+{
+  std::vector<Free> frees(3);
+  frees[0].lo = 1, frees[0].hi = 30;
+  frees[1].lo = 1e-3, frees[1].hi = 1e3;
+  frees[2].lo = 1, frees[2].hi = 10;
+  const auto y = step_within_bounds({std::log(2.0), 0.0, std::log(5.0)}, {10.0, -0.5}, frees);
+  ASSERT_EQ(y.size(), 3u);
+  EXPECT_NEAR(y[0], std::log(30.0), 1e-15);
+  EXPECT_NEAR(y[1], -0.5, 1e-15);
+  EXPECT_NEAR(y[2], std::log(5.0), 1e-15);
 }

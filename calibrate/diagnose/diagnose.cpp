@@ -3,6 +3,7 @@
 // refits, here) and the acceptance test; at the end the finer-mesh refit of
 // what was found (mesh_error.cpp).
 #include "diagnose.hpp"
+#include "diagnosis_case.hpp"
 #include "candidate_scores.hpp"
 #include "errors.hpp"
 #include "evidence.hpp"
@@ -48,31 +49,6 @@ auto retry_without_lost(Step&& step)
     }
 }
 
-/// The current model with the recording's a-priori values (named like --fit),
-/// on the diagnosis discretisation (o.order, o.mesh_size; a user's mesh file
-/// keeps its mesh).
-Config with_known(const Config& current, const Recording& rec, const DiagnoseOptions& o)
-{
-  Config c = current;
-  for (const auto& [name, value] : rec.known)
-    c.set(fit_alias(name).key, value);
-  if (o.order > 0)
-    c.set("geometry.order", std::int64_t(o.order));
-  if (o.mesh_size > 0 && c.text("geometry.mesh_file").empty())
-    c.set("geometry.mesh_size", o.mesh_size);
-  c.validate();
-  return c;
-}
-
-/// `diagnosed` with the element order and mesh size of the user's case.
-Config on_users_mesh(Config diagnosed, const Config& users)
-{
-  diagnosed.set("geometry.order", users.integer("geometry.order"));
-  diagnosed.set("geometry.mesh_size", users.number("geometry.mesh_size"));
-  diagnosed.validate();
-  return diagnosed;
-}
-
 /// One diagnosis in progress: the model found so far and its fit.
 struct Search
 {
@@ -96,6 +72,7 @@ struct Search
   Config current;                          ///< the model, with the terms found so far
   std::vector<Free> frees;                 ///< its free parameters
   FitState state;                          ///< its fit
+  std::optional<SolvedChi2> held_out_current; ///< its solved held-out chi2, once needed
   /// Its fit on the finer mesh, once a refinement check has made one: the
   /// check's refit of the current model, or of the candidate it accepted,
   /// which then is the current model. Reused by later checks and by step 9.
@@ -222,7 +199,9 @@ Evidence cheap_evidence(Search& s, const Candidate& cand, const std::vector<Free
   judge(e, s.o, s.rec.noise_sigma);
   if (held_out_refusal(e, s.o)) // a refusal stands on solved predictions (solved_held_out.hpp)
   {
-    solve_held_out_gains(s.ev, {s.current, s.frees, s.state}, {s.current, frees, after}, s.rec, e);
+    if (!s.held_out_current)
+      s.held_out_current = solved_held_out_chi2(s.ev, {s.current, s.frees, s.state}, s.rec);
+    set_solved_gains(*s.held_out_current, solved_held_out_chi2(s.ev, {s.current, frees, after}, s.rec), e);
     judge(e, s.o, s.rec.noise_sigma);
   }
   return e;
@@ -431,6 +410,7 @@ bool discovery_round(Search& s, Diagnosis& d)
   s.frees = trial;
   s.current = rd.after.config; // the candidate term is on from now on
   s.state = rd.after;
+  s.held_out_current.reset();
   s.fine_state = std::move(fine); // none (no refinement check): step 9 refits on the finer mesh
   rejoin_finer(s, d);
   return true;

@@ -154,13 +154,10 @@ FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::v
   for (int k = 0; k < max_steps && n > 0 && from.J.size() == best.r.size(); ++k)
   {
     const auto delta = gauss_newton_step(from.J, best.r, n);
-    const auto y_best = log_values(best);
+    y = step_within_bounds(log_values(best), delta, frees);
     double largest = 0;
-    for (std::size_t p = 0; p < delta.size(); ++p)
-    {
-      y[p] = std::clamp(y_best[p] + delta[p], std::log(frees[p].lo), std::log(frees[p].hi));
-      largest = std::max(largest, std::abs(delta[p]));
-    }
+    for (double d : delta)
+      largest = std::max(largest, std::abs(d));
     if (delta.empty() || (k > 0 && largest < step_tol))
       break; // the first step is always tried: it measures how far the optimum moved
     const Config c = config_at(base, frees, y);
@@ -179,6 +176,15 @@ std::vector<double> log_values(const FitState& s)
   std::vector<double> y;
   for (double v : s.values)
     y.push_back(std::log(v));
+  return y;
+}
+
+std::vector<double> step_within_bounds(std::vector<double> y, const std::vector<double>& delta,
+                                       const std::vector<Free>& frees)
+{
+  // y_p <- clamp(y_p + delta_p, ln lo_p, ln hi_p)
+  for (std::size_t p = 0; p < y.size() && p < delta.size() && p < frees.size(); ++p)
+    y[p] = std::clamp(y[p] + delta[p], std::log(frees[p].lo), std::log(frees[p].hi));
   return y;
 }
 } // namespace breastsim::calibration

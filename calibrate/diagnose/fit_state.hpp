@@ -47,6 +47,10 @@ FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::v
                             const FitState& from, const std::string& label);
 /// ln of the fitted values of `s`.
 std::vector<double> log_values(const FitState& s);
+/// The step y + delta within the frees' bounds: y_p + delta_p clamped to
+/// [ln lo_p, ln hi_p] (delta may be shorter than y: the rest stays).
+std::vector<double> step_within_bounds(std::vector<double> y, const std::vector<double>& delta,
+                                       const std::vector<Free>& frees);
 /// P(N(0, 1) > z).
 double normal_tail(double z);
 } // namespace breastsim::calibration

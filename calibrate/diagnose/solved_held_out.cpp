@@ -1,31 +1,45 @@
 #include "solved_held_out.hpp"
-#include "evidence.hpp"
 #include "linearised_refit.hpp"
 #include "log.hpp"
-#include <algorithm>
-#include <cmath>
-#include <optional>
 
 namespace breastsim::calibration
 {
 namespace
 {
-/// Posture k's chi2 of case `c`, solved with every other of the `np`
-/// postures left out; none when its solve fails.
+/// Leaves every posture but `k` out of ev's solves while it lives; restores
+/// the exclusions it found.
+class OnlyPosture
+{
+public:
+  OnlyPosture(PointEvaluator& ev, std::size_t k, std::size_t np) : ev_(ev), was_excluded_(np)
+  {
+    for (std::size_t p = 0; p < np; ++p)
+    {
+      was_excluded_[p] = ev.excluded(p);
+      if (p != k)
+        ev.exclude(p);
+    }
+  }
+  ~OnlyPosture()
+  {
+    for (std::size_t p = 0; p < was_excluded_.size(); ++p)
+      if (!was_excluded_[p])
+        ev_.include(p);
+  }
+  OnlyPosture(const OnlyPosture&) = delete;
+  OnlyPosture& operator=(const OnlyPosture&) = delete;
+
+private:
+  PointEvaluator& ev_;
+  std::vector<bool> was_excluded_;
+};
+
+/// Posture k's chi2 of case `c`, solved alone; none when its solve fails.
 std::optional<double> posture_chi2(PointEvaluator& ev, const Config& c, std::size_t k,
                                    std::size_t np, const std::vector<std::size_t>& rows)
 {
-  std::vector<bool> was_excluded(np);
-  for (std::size_t p = 0; p < np; ++p)
-  {
-    was_excluded[p] = ev.excluded(p);
-    if (p != k)
-      ev.exclude(p);
-  }
+  const OnlyPosture only(ev, k, np);
   const PointEvaluation e = ev.try_each(c);
-  for (std::size_t p = 0; p < np; ++p)
-    if (!was_excluded[p])
-      ev.include(p);
   if (!e.solved[k])
     return std::nullopt;
   double chi2 = 0;
@@ -35,45 +49,31 @@ std::optional<double> posture_chi2(PointEvaluator& ev, const Config& c, std::siz
 }
 } // namespace
 
-std::vector<double> solved_held_out_chi2(PointEvaluator& ev, const Config& base,
-                                         const std::vector<Free>& frees, const FitState& s,
-                                         const Recording& rec, const std::vector<double>& linearised)
+SolvedChi2 solved_held_out_chi2(PointEvaluator& ev, const HeldOutModel& m, const Recording& rec)
 {
-  const auto rows = rows_by_posture(s, rec);
-  const auto y = log_values(s);
-  std::vector<double> out;
-  for (std::size_t k = 0; k < rows.size() && k < linearised.size(); ++k)
+  const auto rows = rows_by_posture(m.fit, rec);
+  const auto y = log_values(m.fit);
+  SolvedChi2 out(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k)
   {
     if (ev.excluded(k))
-    {
-      out.push_back(linearised[k]);
       continue;
-    }
-    const auto delta = step_without(s, mask_of(s, rows[k]));
-    auto yk = y;
-    for (std::size_t p = 0; p < yk.size() && p < delta.size() && p < frees.size(); ++p)
-      yk[p] = std::clamp(yk[p] + delta[p], std::log(frees[p].lo), std::log(frees[p].hi));
-    const auto chi2 = posture_chi2(ev, config_at(base, frees, yk), k, rows.size(), rows[k]);
-    if (!chi2)
-      log::warn("posture '{}': its held-out prediction could not be solved; the linearised one is kept",
-                rec.postures[k].name);
-    out.push_back(chi2.value_or(linearised[k]));
-    log::info("posture '{}' held out: chi2 {:.1f} solved, {:.1f} linearised", rec.postures[k].name,
-              out.back(), linearised[k]);
+    const auto yk = step_within_bounds(y, step_without(m.fit, mask_of(m.fit, rows[k])), m.frees);
+    out[k] = posture_chi2(ev, config_at(m.base, m.frees, yk), k, rows.size(), rows[k]);
+    if (out[k])
+      log::info("posture '{}' held out: chi2 {:.1f} solved", rec.postures[k].name, *out[k]);
+    else
+      log::warn("posture '{}': its held-out prediction could not be solved", rec.postures[k].name);
   }
   return out;
 }
 
-void solve_held_out_gains(PointEvaluator& ev, const HeldOutModel& without, const HeldOutModel& with,
-                          const Recording& rec, Evidence& e)
+void set_solved_gains(const SolvedChi2& without, const SolvedChi2& with, Evidence& e)
 {
-  const auto a = solved_held_out_chi2(ev, without.base, without.frees, without.fit, rec,
-                                      held_out_chi2(without.fit, rec));
-  const auto b = solved_held_out_chi2(ev, with.base, with.frees, with.fit, rec, held_out_chi2(with.fit, rec));
   e.held_out_gain_linearised = e.held_out_gain;
-  e.held_out_gain.clear();
-  for (std::size_t k = 0; k < a.size() && k < b.size(); ++k)
-    e.held_out_gain.push_back(a[k] - b[k]);
+  for (std::size_t k = 0; k < e.held_out_gain.size() && k < without.size() && k < with.size(); ++k)
+    if (without[k] && with[k])
+      e.held_out_gain[k] = *without[k] - *with[k];
   e.held_out_solved = true;
 }
 } // namespace breastsim::calibration

@@ -6,21 +6,11 @@
 #include "diagnosis.hpp"
 #include "fit_state.hpp"
 #include "point_evaluator.hpp"
+#include <optional>
 #include <vector>
 
 namespace breastsim::calibration
 {
-/// For each posture k of fit `s` (of `frees` of `base`): the Gauss-Newton
-/// step fitted without k's residual rows (linearised_refit.hpp step_without),
-///   y_k = ln p + delta_k,
-/// the case config_at(base, frees, y_k) solved in posture k alone, and k's
-/// chi2 there, sum over its rows of r_i^2 (points, then landmark). A posture
-/// whose solve fails keeps `linearised[k]`. The other postures are left out
-/// of these solves only (ev's exclusions are restored). Collective.
-std::vector<double> solved_held_out_chi2(PointEvaluator& ev, const Config& base,
-                                         const std::vector<Free>& frees, const FitState& s,
-                                         const Recording& rec, const std::vector<double>& linearised);
-
 /// A fitted model for the held-out prediction: its fit of `frees` of `base`.
 struct HeldOutModel
 {
@@ -29,9 +19,23 @@ struct HeldOutModel
   const FitState& fit;
 };
 
-/// e.held_out_gain solved: chi2_k of `without` - chi2_k of `with`, each
-/// solved_held_out_chi2; the linearised gains are kept in
-/// e.held_out_gain_linearised. Collective.
-void solve_held_out_gains(PointEvaluator& ev, const HeldOutModel& without, const HeldOutModel& with,
-                          const Recording& rec, Evidence& e);
+/// Per posture, the solved held-out chi2; none where it was not solved.
+using SolvedChi2 = std::vector<std::optional<double>>;
+
+/// For each posture k of model `m`: the Gauss-Newton step fitted without k's
+/// residual rows (linearised_refit.hpp step_without), within the frees'
+/// bounds,
+///   y_k = ln p + delta_k,
+/// the case config_at(base, frees, y_k) solved in posture k alone, and k's
+/// chi2 there, sum over its rows of r_i^2 (points, then landmark). None for
+/// a posture the evaluator leaves out or whose solve fails. The other
+/// postures are left out of these solves only (ev's exclusions are
+/// restored, also on an exception). Collective.
+SolvedChi2 solved_held_out_chi2(PointEvaluator& ev, const HeldOutModel& m, const Recording& rec);
+
+/// e.held_out_gain solved: per posture, chi2_k without - chi2_k with the
+/// term, where both were solved; a posture not solved in either fit keeps
+/// its linearised gain (a gain never mixes a solved and a linearised chi2).
+/// The linearised gains are kept in e.held_out_gain_linearised.
+void set_solved_gains(const SolvedChi2& without, const SolvedChi2& with, Evidence& e);
 } // namespace breastsim::calibration
