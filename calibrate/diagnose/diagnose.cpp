@@ -192,7 +192,8 @@ Evidence cheap_evidence(Search& s, const Candidate& cand, const std::vector<Free
   e.misfit_before = s.state.chi2 - s.state.dof;
   e.terms_before = s.found;
   effect_size(s.state, after, e);
-  e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, judged_effect_mm(e, s.o.effect_measure));
+  e.effect_at_null_edge_mm =
+      effect_at_interval_edge(after, cand.parameter, judged_effect_mm(e, s.o.effect_measure));
   const auto without = held_out_chi2(s.state, s.rec), with = held_out_chi2(after, s.rec);
   for (std::size_t k = 0; k < without.size() && k < with.size(); ++k)
     e.held_out_gain.push_back(without[k] - with[k]);
