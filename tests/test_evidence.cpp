@@ -4,6 +4,7 @@
 #include "model_form.hpp"
 #include "separation.hpp"
 #include <cmath>
+#include <tuple>
 #include <gtest/gtest.h>
 
 using namespace breastsim::calibration;
@@ -112,6 +113,9 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   EXPECT_NE(e.failed[0].find("interval reaches the null"), std::string::npos) << e.failed[0];
   EXPECT_NE(e.failed[1].find("held-out postures"), std::string::npos) << e.failed[1];
   e.refinement_checked = true;
+  std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 177.9, o);
+  EXPECT_EQ(e.critical_fine, e.critical);
+  EXPECT_EQ(e.critical_continuum, e.critical);
   e.lr_fine = 250;
   e.lr_continuum = 49;
   e.effect_at_null_edge_mm = 0.2;
@@ -139,6 +143,38 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   e.misfit_before = 700; // 57 %
   judge(e, o, 0.5e-3);
   EXPECT_TRUE(e.failed.empty());
+}
+
+// The scaled allowance (--refinement-allowance scaled): the diagnosis mesh's
+// allowance A = 138.1 is about r^(2p) = 1.5^3 smaller on the finer mesh and
+// gone in the continuum (eff_base_springs_weak_2's bed: LR 175.0 on the
+// finer mesh, 101.3 in the continuum; refused with the full allowance).
+TEST(Evidence, RefinementAllowanceFullOrScaled)
+{
+  DiagnoseOptions o;
+  Evidence e;
+  e.lr = 252.1;
+  e.critical = 12.1 + 138.1;
+  e.effect_rms_mm_all = e.effect_rms_mm_largest = e.effect_at_null_edge_mm = 0.087;
+  e.held_out_gain = {114.0, 69.3, -0.7, 75.2};
+  e.refinement_checked = true;
+  e.lr_fine = 175.0;
+  e.lr_continuum = 101.3;
+  std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 138.1, o);
+  judge(e, o, 0.5e-3);
+  ASSERT_EQ(e.failed.size(), 1u);
+  EXPECT_NE(e.failed[0].find("does not survive refinement: 175.0 on the finer mesh against 150.2"),
+            std::string::npos) << e.failed[0];
+  o.refinement_allowance = RefinementAllowance::scaled;
+  std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 138.1, o);
+  EXPECT_NEAR(e.critical_fine, 12.1 + 138.1 / std::pow(1.5, 3.0), 1e-12);
+  EXPECT_EQ(e.critical_continuum, 12.1);
+  judge(e, o, 0.5e-3);
+  EXPECT_TRUE(e.failed.empty()) << e.failed[0];
+  e.lr_continuum = 12.0; // the continuum still needs the statistical critical value
+  judge(e, o, 0.5e-3);
+  EXPECT_EQ(e.failed.size(), 1u);
+  EXPECT_STREQ(refinement_allowance_name(o.refinement_allowance), "scaled");
 }
 
 // The effect is judged over all points: a gland that changes its four

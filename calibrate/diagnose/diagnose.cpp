@@ -22,6 +22,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
+#include <tuple>
 
 namespace breastsim::calibration
 {
@@ -239,6 +240,8 @@ std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vect
                           ? s.chi2_on_finer_postures(s.state) - s.chi2_on_finer_postures(rd.after)
                           : e.lr;
   e.lr_continuum = continuum_lr(lr_h, e.lr_fine, s.o.mesh_ratio, s.o.refinement_order);
+  std::tie(e.critical_fine, e.critical_continuum) =
+      refinement_criticals(rd.critical, e.critical - rd.critical, s.o);
   log::info("candidate '{}': LR {:.1f} on the finer mesh, {:.1f} in the continuum", e.candidate,
             e.lr_fine, e.lr_continuum);
   judge(e, s.o, s.rec.noise_sigma);
@@ -441,6 +444,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   d.sigma_eff.assign(rec.postures.size(), rec.noise_sigma);
   d.noise_floor = o.noise_floor;
   d.effect_measure = o.effect_measure;
+  d.refinement_allowance = o.refinement_allowance;
   Search s(rec, current, o, comm);
   fit_current_model(s, d);
   for (int round = 0; round < o.max_rounds; ++round)

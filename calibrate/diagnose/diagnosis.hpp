@@ -26,6 +26,13 @@ enum class EffectMeasure
   largest_posture ///< the RMS change in the posture the term changes most
 };
 
+/// The mesh allowance in the refinement check's critical values.
+enum class RefinementAllowance
+{
+  full,  ///< the diagnosis mesh's allowance A on the finer mesh and in the continuum
+  scaled ///< A / r^(2p) on the mesh r times finer, none in the continuum
+};
+
 struct DiagnoseOptions
 {
   std::string fit = "mu";              ///< current-model parameters refitted (--fit names)
@@ -64,6 +71,9 @@ struct DiagnoseOptions
   /// value on the mesh `mesh_ratio` times finer and extrapolated to the
   /// continuum (evidence.hpp, continuum_lr) with this order (0: off).
   double refinement_order = 1.5;
+  /// The allowance the check's critical values carry (evidence.hpp
+  /// refinement_criticals).
+  RefinementAllowance refinement_allowance = RefinementAllowance::full;
   /// Held-out postures: an accepted term must improve the linearised
   /// prediction of the postures it was not fitted on (sum of chi2 gains > 0).
   bool held_out_check = true;
@@ -118,6 +128,7 @@ struct Evidence
   int terms_before = 0;                        ///< terms found before this one
   bool refinement_checked = false;
   double lr_fine = 0, lr_continuum = 0;        ///< refinement check (refinement_checked)
+  double critical_fine = 0, critical_continuum = 0; ///< their critical values (refinement_criticals)
   std::vector<std::string> failed;             ///< reasons for rejection (empty: holds every rule checked)
   bool accepted = false;                       ///< the round's accepted candidate
 };
@@ -219,6 +230,7 @@ struct Diagnosis
   std::vector<double> local_floor_max; ///< largest e_h,i per posture [m] (empty unless NoiseFloor::local)
   NoiseFloor noise_floor = NoiseFloor::local;
   EffectMeasure effect_measure = EffectMeasure::all;
+  RefinementAllowance refinement_allowance = RefinementAllowance::full;
   /// Postures the fitted current model cannot be solved in on the finer
   /// mesh: their e_h is the largest of the others', the refinement checks
   /// leave them out, and the final values are the diagnosis mesh's unless

@@ -267,6 +267,7 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   j["noise_floor"] = noise_floor_json(d, rec);
   j["noise_floor_spread"] = d.noise_floor == NoiseFloor::local ? "local" : "posture";
   j["effect_measure"] = effect_measure_name(d.effect_measure);
+  j["refinement_allowance"] = refinement_allowance_name(d.refinement_allowance);
   j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
   j["lost_on_finer_mesh"] = d.lost_on_finer;
   j["rejoined_on_finer_mesh"] = d.rejoined_on_finer;

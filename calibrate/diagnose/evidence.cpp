@@ -83,6 +83,20 @@ std::optional<std::string> held_out_refusal(const Evidence& e, const DiagnoseOpt
   return std::nullopt;
 }
 
+std::pair<double, double> refinement_criticals(double statistical, double allowance,
+                                               const DiagnoseOptions& o)
+{
+  if (o.refinement_allowance == RefinementAllowance::full)
+    return {statistical + allowance, statistical + allowance};
+  // A / r^(2p) on the finer mesh, 0 in the continuum
+  return {statistical + allowance / std::pow(o.mesh_ratio, 2 * o.refinement_order), statistical};
+}
+
+const char* refinement_allowance_name(RefinementAllowance a)
+{
+  return a == RefinementAllowance::scaled ? "scaled" : "full";
+}
+
 double judged_effect_mm(const Evidence& e, EffectMeasure measure)
 {
   return measure == EffectMeasure::largest_posture ? e.effect_rms_mm_largest : e.effect_rms_mm_all;
@@ -122,10 +136,10 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
                                    "candidate has, and the term would stand in for it",
                                    100 * misfit_share, e.lr, e.misfit_before, 100 * min_share,
                                    e.terms_before > 0 ? " (after a found term)" : ""));
-  if (e.refinement_checked && !(e.lr_fine > e.critical && e.lr_continuum > e.critical))
-    e.failed.push_back(fmt::format("its LR does not survive refinement: {:.1f} on the finer mesh, "
-                                   "{:.1f} extrapolated to the continuum, against {:.1f}",
-                                   e.lr_fine, e.lr_continuum, e.critical));
+  if (e.refinement_checked && !(e.lr_fine > e.critical_fine && e.lr_continuum > e.critical_continuum))
+    e.failed.push_back(fmt::format("its LR does not survive refinement: {:.1f} on the finer mesh "
+                                   "against {:.1f}, {:.1f} extrapolated to the continuum against {:.1f}",
+                                   e.lr_fine, e.critical_fine, e.lr_continuum, e.critical_continuum));
 }
 
 std::string evidence_text(const Evidence& e)
@@ -143,7 +157,8 @@ std::string evidence_text(const Evidence& e)
     t += fmt::format("; {:.0f} % of the misfit before it (chi2 - dof = {:.1f})", 100 * e.lr / e.misfit_before,
                      e.misfit_before);
   if (e.refinement_checked)
-    t += fmt::format("; LR on the finer mesh {:.1f}, in the continuum {:.1f}", e.lr_fine, e.lr_continuum);
+    t += fmt::format("; LR on the finer mesh {:.1f} (critical {:.1f}), in the continuum {:.1f} (critical {:.1f})",
+                     e.lr_fine, e.critical_fine, e.lr_continuum, e.critical_continuum);
   if (e.failed.empty())
     t += e.accepted ? ".\n    -> accepted: every rule holds.\n"
                     : ".\n    -> not added: another candidate with a larger margin was accepted first.\n";
@@ -175,6 +190,8 @@ nlohmann::json to_json(const Evidence& e)
   {
     j["likelihood_ratio_fine"] = e.lr_fine;
     j["likelihood_ratio_continuum"] = e.lr_continuum;
+    j["critical_value_fine"] = e.critical_fine;
+    j["critical_value_continuum"] = e.critical_continuum;
   }
   return j;
 }

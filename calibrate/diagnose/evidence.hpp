@@ -6,6 +6,7 @@
 #include "diagnosis.hpp"
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace breastsim::calibration
@@ -38,6 +39,17 @@ std::vector<double> held_out_chi2(const FitState& s, const Recording& rec);
 /// extrapolated as an error of order p,
 ///   sqrt(LR_0) = sqrt(LR_f) + (sqrt(LR_f) - sqrt(LR_h)) / (r^p - 1).
 double continuum_lr(double lr_h, double lr_fine, double ratio, double order);
+
+/// The refinement check's critical values {on the mesh `o.mesh_ratio` = r
+/// times finer, in the continuum}, from the statistical critical value c and
+/// the diagnosis mesh's allowance A (the LR its error could give):
+///   full:   {c + A, c + A};
+///   scaled: {c + A / r^(2p), c}, p = o.refinement_order (the error is of
+///           order h^p, an LR of order h^2p; none is left in the continuum).
+std::pair<double, double> refinement_criticals(double statistical, double allowance,
+                                               const DiagnoseOptions& o);
+/// "full" or "scaled" (the option's value).
+const char* refinement_allowance_name(RefinementAllowance a);
 
 /// The held-out rule (DiagnoseOptions::held_out_check): why it refuses `e`
 /// (its summed held-out chi2 gain is not positive, or no more than half of

@@ -104,6 +104,18 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--refinement-order", o->d.refinement_order,
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();
+  app->add_option_function<std::string>(
+         "--refinement-allowance",
+         [o](const std::string& v)
+         {
+           o->d.refinement_allowance = v == "scaled" ? calibration::RefinementAllowance::scaled
+                                                    : calibration::RefinementAllowance::full;
+         },
+         "the mesh allowance in the refinement check's critical values: full (the diagnosis "
+         "mesh's, on the finer mesh and in the continuum) or scaled (A / r^(2p) on the finer "
+         "mesh, none in the continuum)")
+      ->check(CLI::IsMember({"full", "scaled"}))
+      ->option_text("full|scaled (default: full)");
   app->add_flag("!--no-held-out", o->d.held_out_check,
                 "do not require a gain in the prediction of held-out postures");
   app->add_option("--ranks-per-case", o->d.ranks_per_case,

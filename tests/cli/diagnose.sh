@@ -35,7 +35,7 @@ rec = json.loads((work / "recording.json").read_text())
 d = json.loads((work / "out" / "diagnosis.json").read_text())
 assert "truth" in rec and rec["truth"]["hidden"] == (None if hidden == "control" else hidden)
 found = d["discovered"]
-assert d["effect_measure"] == "all" and d["noise_floor_spread"] == "local", (d["effect_measure"], d["noise_floor_spread"])
+assert (d["effect_measure"], d["noise_floor_spread"], d["refinement_allowance"]) == ("all", "local", "full"), d
 first, final = d["rounds"][0]["fit"], d["final"]
 rms = lambda f: sum(p["rms_mm"] for p in f["postures"]) / len(f["postures"])
 if hidden == "control":
@@ -126,6 +126,7 @@ PY
   expect_fail "--jackknife-patches = 11 is out of range" "$work/recording.json" --jackknife-patches 11
   expect_fail "--noise-floor" "$work/recording.json" --noise-floor everywhere
   expect_fail "--effect-measure: median not in" "$work/recording.json" --effect-measure median
+  expect_fail "--refinement-allowance: half not in" "$work/recording.json" --refinement-allowance half
   sed 's/"noise_sigma":[^,]*/"noise_sigma":-1/' "$work/recording.json" > "$work/neg.json"
   expect_fail "key 'noise_sigma' = -1" "$work/neg.json"
 fi
