@@ -71,7 +71,9 @@ def recordings(which="main"):
     the confirmation set ("confirm", 12: made after the hold-out set's
     verdicts were seen, to test rule changes chosen on the other three) or
     the effect-rule set ("effect", 16: made to test the practical-significance
-    measure once more, where it can change a verdict)."""
+    measure once more, where it can change a verdict) or the refinement-rule
+    set ("refine", 15: weak beds mostly, to test the refinement check's
+    allowance)."""
     if which == "validation":
         return validation_recordings()
     if which == "holdout":
@@ -80,6 +82,8 @@ def recordings(which="main"):
         return confirm_recordings()
     if which == "effect":
         return effect_rule_recordings()
+    if which == "refine":
+        return refinement_rule_recordings()
     out = []
     add = _adder(out, 0)
 
@@ -162,17 +166,30 @@ def effect_rule_recordings():
     return _controls_and_weak_shapes("eff_", EFFECT_OFFSET, 47, shapes=3)
 
 
+REFINE_OFFSET = 170  # material/posture cycle and seeds 1870+: none shared with the other sets
+
+
+def refinement_rule_recordings():
+    """4 controls, eight new weak beds (the candidate whose mesh allowance is
+    largest: where the refinement check decides) and one new weak shape of
+    each other candidate: defined on 2026-12-05 with its test written in
+    docs/DIAGNOSE.md, before any recording of it was generated."""
+    shapes = {cand: 8 if cand == "base_springs" else 1 for cand in BY_CANDIDATE}
+    return _controls_and_weak_shapes("ref_", REFINE_OFFSET, 53, shapes=shapes)
+
+
 def _controls_and_weak_shapes(prefix, offset, shape_seed, shapes=2):
-    """4 controls and, per candidate, `shapes` shapes at the weak strength,
-    named PREFIX..., their material and seed from position `offset` of the
-    cycle."""
+    """4 controls and, per candidate, `shapes` shapes (a number, or one per
+    candidate name) at the weak strength, named PREFIX..., their material and
+    seed from position `offset` of the cycle."""
     out = []
     add = _adder(out, offset)
 
     for i in range(1, 5):
         add(f"{prefix}control_{i:02d}", "control", [])
     for cand, effect in sorted(BY_CANDIDATE.items()):
-        for k in range(1, shapes + 1):
+        n = shapes[cand] if isinstance(shapes, dict) else shapes
+        for k in range(1, n + 1):
             pattern = _pattern(effect, [shape_seed, len(cand), ord(cand[0]), k], 1 + k)
             add(f"{prefix}{cand}_weak_{k}", "weak", [(effect, pattern)])
     return out

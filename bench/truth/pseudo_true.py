@@ -189,7 +189,7 @@ def material_fixed_values(stored):
 
 def parse_args():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--set", dest="which", choices=["main", "validation", "holdout", "confirm", "effect"], default="main")
+    ap.add_argument("--set", dest="which", choices=["main", "validation", "holdout", "confirm", "effect", "refine"], default="main")
     ap.add_argument("--only", default="", help="recording names (comma-separated; computed in this order)")
     ap.add_argument("--redo", action="store_true", help="recompute existing entries")
     ap.add_argument("--folder", default=None, help="folder of manifest.json (default: by --set)")
