@@ -76,7 +76,7 @@ def param(key, unit, default, lo, hi, doc, lo_open=False, shape=()):
                 lo_open=lo_open, shape=list(shape))
 
 
-def candidate(parameter, unit, typical, physics, sets, flags=None):
+def candidate(parameter, unit, typical, physics, sets, flags=None, family=None):
     """Metadata of a diagnosis candidate (docs/DIAGNOSE.md): the term switched
     on with one scalar q >= 0, nested in the model (q = 0 reproduces the model
     without the term).
@@ -88,10 +88,15 @@ def candidate(parameter, unit, typical, physics, sets, flags=None):
     "q" (the parameter = q), "1/q" (= 1/q), "keep_ratio" (keeps its ratio to
     the first one, which is set from q). flags: {case key: bool} set with the
     term switched on (e.g. {"base.fixed": False}); the candidate also applies
-    when the term is on but a flag has the other value.
+    when the term is on but a flag has the other value. family: the physics
+    the candidate names when it is found, if another candidate is a
+    different form of the same physics (e.g. the ligaments as springs or as
+    cables; default: the term's own name). The diagnosis switches on at
+    most one form of a family, and two forms of one family that the data
+    cannot tell apart still name the family.
     """
     return dict(parameter=parameter, unit=unit, typical=typical, physics=physics,
-                sets=dict(sets), flags=dict(flags or {}))
+                sets=dict(sets), flags=dict(flags or {}), family=family)
 
 
 def fit_alias(target, role):

@@ -57,7 +57,7 @@ def candidate_row(term, c):
     sets = ", ".join(f"{{{cstr(k)}, CandidateRule::{RULES[r]}}}" for k, r in c["sets"])
     flags = ", ".join(f"{{{cstr(k)}, {'true' if v else 'false'}}}" for k, v in c["flags"])
     return (f"{{{cstr(term)}, {cstr(c['parameter'])}, {cstr(c['unit'])}, {cstr(c['physics'])}, "
-            f"{num(c['typical'])}, {{{sets}}}, {{{flags}}}}}")
+            f"{num(c['typical'])}, {{{sets}}}, {{{flags}}}, {cstr(c['family'] or term)}}}")
 
 
 def alias_row(alias, a):

@@ -103,7 +103,12 @@ for _m in _modules:
         if not isinstance(_key, str) or not isinstance(_value, bool):
             raise RuntimeError(f"{_where}: flags must map case keys to True/False, got {_key!r}: {_value!r}")
     CANDIDATES[_m.NAME] = dict(parameter=_c["parameter"], unit=_c["unit"], typical=float(_c["typical"]),
-                               physics=_c["physics"], sets=_sets, flags=list(_c["flags"].items()))
+                               physics=_c["physics"], sets=_sets, flags=list(_c["flags"].items()),
+                               family=_c.get("family") or _m.NAME)
+for _n, _c in CANDIDATES.items():
+    if _c["family"] not in CANDIDATES or CANDIDATES[_c["family"]]["family"] != _c["family"]:
+        raise RuntimeError(f"term '{_n}': CANDIDATE family '{_c['family']}' must be the name of a "
+                           "candidate that is its own family")
 
 # --fit names (calibrate/fit/fit_parameters.hpp): a term's FIT = {name: fit_alias(...)}
 # names its parameters, common.GEOMETRY_FIT the neutral shape. Each name and each

@@ -12,6 +12,7 @@ TERMS = [
     "base_springs",
     "sutures",
     "suspensory_ligament",
+    "suspensory_cables",
     "gland_core",
     "tissue_suture",
     "chest_wall",

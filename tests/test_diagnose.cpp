@@ -174,7 +174,8 @@ TEST(Candidates, EachIsNestedAtItsNullValue)
   };
   const auto u0 = solve(c);
   for (const auto& [term, key] : std::vector<std::pair<std::string, std::string>>{
-           {"suspensory_ligament", "ligament.k"}, {"gland_core", "gland.excess"}})
+           {"suspensory_ligament", "ligament.k"}, {"suspensory_cables", "cables.k"},
+           {"gland_core", "gland.excess"}})
   {
     Config on = c;
     on.set("terms." + term, true);
@@ -209,16 +210,20 @@ TEST(Candidates, EachIsNestedAtItsNullValue)
 TEST(Candidates, TableIsWhatTheFormsDeclare)
 {
   // The CANDIDATE of each term in forms/ (skin.py, base_springs.py,
-  // suspensory_ligament.py, gland_core.py), in the order of forms/registry.py.
+  // suspensory_ligament.py, suspensory_cables.py, gland_core.py), in the
+  // order of forms/registry.py.
   struct Declared
   {
     std::string name, parameter, unit, first_key;
     double typical;
+    std::string family;
   };
-  const std::vector<Declared> declared = {{"skin", "skin.mu", "Pa", "skin.mu", 2e4},
-                                          {"base_springs", "base.compliance", "m/Pa", "base.c", 5e-6},
-                                          {"suspensory_ligament", "ligament.k", "Pa/m", "ligament.k", 2e3},
-                                          {"gland_core", "gland.excess", "1", "gland.excess", 2.0}};
+  const std::vector<Declared> declared = {
+      {"skin", "skin.mu", "Pa", "skin.mu", 2e4, "skin"},
+      {"base_springs", "base.compliance", "m/Pa", "base.c", 5e-6, "base_springs"},
+      {"suspensory_ligament", "ligament.k", "Pa/m", "ligament.k", 2e3, "suspensory_ligament"},
+      {"suspensory_cables", "cables.k", "Pa/m", "cables.k", 2e3, "suspensory_ligament"},
+      {"gland_core", "gland.excess", "1", "gland.excess", 2.0, "gland_core"}};
   const auto& lib = candidate_library();
   ASSERT_EQ(lib.size(), declared.size());
   for (std::size_t i = 0; i < lib.size(); ++i)
@@ -227,11 +232,12 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
     EXPECT_EQ(lib[i].parameter, declared[i].parameter);
     EXPECT_EQ(lib[i].unit, declared[i].unit);
     EXPECT_DOUBLE_EQ(lib[i].typical, declared[i].typical);
+    EXPECT_EQ(lib[i].family, declared[i].family);
     ASSERT_FALSE(lib[i].sets.empty());
     EXPECT_EQ(lib[i].sets[0].key, declared[i].first_key);
     EXPECT_FALSE(lib[i].physics.empty());
   }
-  EXPECT_EQ(candidate_names(), "skin, base_springs, suspensory_ligament, gland_core");
+  EXPECT_EQ(candidate_names(), "skin, base_springs, suspensory_ligament, suspensory_cables, gland_core");
   // Every key a candidate sets is a parameter of its own term, and every
   // flag a case key; the candidate is a registered term.
   for (const auto& c : lib)
@@ -280,6 +286,28 @@ TEST(Candidates, RulesSetTheCaseKeys)
   EXPECT_TRUE(lig.flag("terms.suspensory_ligament"));
   EXPECT_DOUBLE_EQ(lig.number("ligament.k"), 1234.0);
   EXPECT_THROW(candidate("gland_core").with(Config(), 0.0), std::invalid_argument);
+}
+
+TEST(Candidates, OneFormPerPhysics)
+{
+  // The ligaments as springs or as cables: a family of two forms. With one
+  // form on, the other is no candidate; found, both name the ligaments.
+  Config c;
+  EXPECT_TRUE(candidate("suspensory_cables").applicable(c));
+  EXPECT_TRUE(candidate("suspensory_ligament").applicable(c));
+  const Config springs = candidate("suspensory_ligament").with(c, 1000.0);
+  EXPECT_FALSE(candidate("suspensory_cables").applicable(springs));
+  EXPECT_FALSE(candidate("suspensory_ligament").applicable(springs));
+  EXPECT_TRUE(candidate("skin").applicable(springs) == candidate("skin").applicable(c));
+  const Config cables = candidate("suspensory_cables").with(c, 1000.0);
+  EXPECT_FALSE(candidate("suspensory_ligament").applicable(cables));
+  EXPECT_DOUBLE_EQ(cables.number("cables.k"), 1000.0);
+  EXPECT_TRUE(candidate("suspensory_cables").same_physics(candidate("suspensory_ligament")));
+  EXPECT_FALSE(candidate("suspensory_cables").same_physics(candidate("skin")));
+  EXPECT_EQ(physics_of({"skin", "suspensory_cables"}),
+            (std::vector<std::string>{"skin", "suspensory_ligament"}));
+  EXPECT_EQ(physics_of({"suspensory_cables", "suspensory_ligament"}),
+            (std::vector<std::string>{"suspensory_ligament"}));
 }
 
 namespace

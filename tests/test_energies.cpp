@@ -153,6 +153,25 @@ TEST_P(Energies, SuspensoryLigament)
   EXPECT_NEAR(m->energy("suspensory_ligament") / expected, 1.0, GetParam() == 1 ? 0.03 : 0.01);
 }
 
+TEST_P(Energies, SuspensoryCables)
+{
+  // u = e (X - A(X)) = e (0, Y, -d): every cable lengthens by e |X - A|, so
+  // E = k/2 e^2 int_{skin, Z > 0} (Y^2 + d^2) dA. On the sphere of radius Rs
+  // the band [Y, Y + dY] has area pi Rs dY on the half cap (Archimedes),
+  // half of it at Z > 0: E = k/2 e^2 pi Rs / 2 (H^3 / 3 + d^2 H).
+  const double k = 1500, d = 0.02, e = 0.05;
+  const double H = c.number("geometry.H"), R = c.number("geometry.R");
+  const double Rs = (R * R + H * H) / (2 * H);
+  m->set_parameter("k_c", {k});
+  m->set_parameter("d_a", {d});
+  set_homogeneous(*m, {1, 0, 0, 0, 1 + e, 0, 0, 0, 1}, {0.0, 0.0, -e * d});
+  const double expected = k / 2 * e * e * M_PI * Rs / 2 * (H * H * H / 3 + d * d * H);
+  EXPECT_NEAR(m->energy("suspensory_cables") / expected, 1.0, GetParam() == 1 ? 0.03 : 0.01);
+  // Toward the anchors the cables go slack: no energy.
+  set_homogeneous(*m, {1, 0, 0, 0, 1 - e, 0, 0, 0, 1}, {0.0, 0.0, e * d});
+  EXPECT_EQ(m->energy("suspensory_cables"), 0.0);
+}
+
 TEST_P(Energies, ChestWall)
 {
   // u = (0, -a, 0): the skin below height a goes a - Y behind the chest.

@@ -2,6 +2,7 @@
 // hand-made fits whose answers are known in closed form.
 #include "evidence.hpp"
 #include "model_form.hpp"
+#include "rule_names.hpp"
 #include "separation.hpp"
 #include <cmath>
 #include <tuple>
@@ -174,7 +175,7 @@ TEST(Evidence, RefinementAllowanceFullOrScaled)
   e.lr_continuum = 12.0; // the continuum still needs the statistical critical value
   judge(e, o, 0.5e-3);
   EXPECT_EQ(e.failed.size(), 1u);
-  EXPECT_STREQ(refinement_allowance_name(o.refinement_allowance), "scaled");
+  EXPECT_EQ(name_of(refinement_allowance_names(), o.refinement_allowance), "scaled");
 }
 
 // The effect is judged over all points: a gland that changes its four
@@ -290,4 +291,45 @@ TEST(Separation, InseparableTermIsSetAsideUnlessItsRivalIsFound)
   set_aside_inseparable(both);
   EXPECT_EQ(both.discovered.size(), 2u);
   EXPECT_TRUE(both.undecided.empty());
+}
+
+// A rival that is another form of the same physics does not set the term
+// aside: the physics is named, the report says its form is undecided.
+TEST(Separation, AnotherFormOfTheSamePhysicsStillNamesIt)
+{
+  Round r;
+  r.accepted = true;
+  r.tested = "suspensory_cables";
+  r.rivals = {{"suspensory_ligament", 0.7, 12.0}};
+  Diagnosis d;
+  d.rounds = {r};
+  d.discovered = {"suspensory_cables"};
+  set_aside_inseparable(d);
+  EXPECT_EQ(d.discovered, std::vector<std::string>{"suspensory_cables"});
+  EXPECT_TRUE(d.undecided.empty());
+  // A rival of other physics among them still sets it aside.
+  d.rounds[0].rivals.push_back({"skin", 1.1, 20.0});
+  set_aside_inseparable(d);
+  EXPECT_TRUE(d.discovered.empty());
+  ASSERT_EQ(d.undecided.size(), 1u);
+}
+
+// One name table per rule choice: every value has one name, and the name
+// gives the value back (the command line and diagnosis.json share them).
+TEST(RuleNames, EveryValueHasOneNameAndBack)
+{
+  const auto round_trip = [](const auto& table)
+  {
+    for (const auto& [name, value] : table)
+    {
+      EXPECT_EQ(name_of(table, value), name);
+      EXPECT_TRUE(value_of(table, name) == value) << name;
+    }
+    EXPECT_THROW(value_of(table, "neither"), std::invalid_argument);
+  };
+  round_trip(noise_floor_names());
+  round_trip(effect_measure_names());
+  round_trip(refinement_allowance_names());
+  EXPECT_EQ(names_of(effect_measure_names()), (std::vector<std::string>{"all", "largest-posture"}));
+  EXPECT_EQ(name_of(noise_floor_names(), NoiseFloor::local), "local");
 }

@@ -119,7 +119,9 @@ def read_result(out, entry, pseudo=None):
     if info["exit_code"] != 0 or not dj.exists():
         return row
     dia = json.loads(dj.read_text())
-    row["named"] = sorted(dia.get("discovered", []))
+    # the physics named (a candidate that is another form of a physics names that physics)
+    row["named"] = sorted(dia.get("discovered_physics", dia.get("discovered", [])))
+    row["named_forms"] = sorted(dia.get("discovered", []))
     row["verdict"] = dia.get("verdict")
     params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
@@ -151,7 +153,9 @@ def coverage_rows(entry, named, params, pseudo):
                      "inside": covers(q["value"]), "pseudo_true": ref,
                      "reference": ref if ref is not None else q["value"],
                      "reference_kind": "pseudo-true" if ref is not None else "equivalent",
-                     "inside_reference": covers(ref if ref is not None else q["value"])})
+                     "inside_reference": covers(ref if ref is not None else q["value"]),
+                     # named in another form of the physics (another parameter): no interval to compare
+                     "other_form": p is None})
     return rows
 
 
@@ -200,7 +204,8 @@ def summarize(rows):
         "coverage": {"inside": sum(c["inside"] for c in cov), "of": len(cov),
                      "rate": ratio(sum(c["inside"] for c in cov), len(cov)),
                      "exact_equivalents_inside": sum(c["inside"] for c in cov_exact),
-                     "exact_equivalents_of": len(cov_exact)},
+                     "exact_equivalents_of": len(cov_exact),
+                     "named_in_another_form": sum(1 for r in done for c in r["coverage"] if c.get("other_form"))},
         "coverage_reference": {"inside": sum(c["inside_reference"] for c in cov_ref), "of": len(cov_ref),
                                "rate": ratio(sum(c["inside_reference"] for c in cov_ref), len(cov_ref)),
                                "pseudo_true_inside": sum(c["inside_reference"] for c in cov_pseudo),
@@ -245,7 +250,8 @@ def markdown(s, rows, command):
             f"{f['named_terms']} = {fmt(f['rate'], '.2f')}",
             f"- hidden q inside the reported 95 % interval: {cv['inside']} of {cv['of']} correct discoveries "
             f"({fmt(cv['rate'], '.0%')}; with an exact equivalent: {cv['exact_equivalents_inside']} of "
-            f"{cv['exact_equivalents_of']})",
+            f"{cv['exact_equivalents_of']}; named in another form of the physics, no interval of "
+            f"the equivalent's parameter: {cv.get('named_in_another_form', 0)})",
             f"- reference q (the pseudo-true value where computed, else the equivalent) inside the 95 % "
             f"interval: {cr['inside']} of {cr['of']} ({fmt(cr['rate'], '.0%')}; pseudo-true values: "
             f"{cr['pseudo_true_inside']} of {cr['pseudo_true_of']})",
@@ -263,6 +269,8 @@ def markdown(s, rows, command):
         fit = "; ".join(f"{fmt(x['fitted'])} [{fmt(x['interval95'][0])}, {fmt(x['interval95'][1])}]"
                         for x in r["coverage"]) or "-"
         named = "failed" if r["named"] is None else ("+".join(r["named"]) or "none")
+        if r["named"] and r.get("named_forms") and r["named_forms"] != r["named"]:
+            named += " (as " + "+".join(r["named_forms"]) + ")"
         out.append(f"| {r['name']} | {r['class']} | {r['hidden_label']} | {fmt(r['peak_change_mm'])} | "
                    f"{named} | {cov} | {pst} | {fit} | {r['seconds']:.1f} |")
     return "\n".join(out) + "\n"

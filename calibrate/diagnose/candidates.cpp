@@ -1,6 +1,7 @@
 #include "candidates.hpp"
 #include "term_switches.hpp"
 #include "errors.hpp"
+#include <algorithm>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -12,7 +13,7 @@ const std::vector<Candidate>& candidate_library()
   {
     std::vector<Candidate> out;
     for (const auto& c : generated::candidates())
-      out.push_back({c.term, c.parameter, c.unit, c.physics, c.typical, c.sets, c.flags});
+      out.push_back({c.term, c.parameter, c.unit, c.physics, c.typical, c.sets, c.flags, c.family});
     return out;
   }();
   return lib;
@@ -43,9 +44,22 @@ const Candidate& candidate(const std::string& name)
       fmt::format("unknown candidate physics '{}' (allowed: {})", name, candidate_names()));
 }
 
+std::vector<std::string> physics_of(const std::vector<std::string>& names)
+{
+  std::vector<std::string> out;
+  for (const auto& n : names)
+    if (std::find(out.begin(), out.end(), candidate(n).family) == out.end())
+      out.push_back(candidate(n).family);
+  return out;
+}
+
 bool Candidate::applicable(const Config& c) const
 {
-  if (!TermSwitches::from(c).is_on(name))
+  const TermSwitches on = TermSwitches::from(c);
+  for (const auto& other : candidate_library())
+    if (other.name != name && same_physics(other) && on.is_on(other.name))
+      return false;
+  if (!on.is_on(name))
     return true;
   for (const auto& [key, value] : flags)
     if (c.flag(key) != value)

@@ -23,9 +23,14 @@ struct Candidate
   double typical = 1;    ///< size of a clearly visible effect [unit]
   std::vector<generated::CandidateSetting> sets;   ///< the case keys q sets, in order
   std::vector<std::pair<std::string, bool>> flags; ///< case flags set with the term on
+  std::string family; ///< the physics it names: its own name, or the candidate it is another form of
+
+  /// True if `other` is a form of the same physics (the same family).
+  bool same_physics(const Candidate& other) const { return family == other.family; }
 
   /// True if the current case leaves this physics out (the term is off, or
-  /// one of its flags has the other value, e.g. base.fixed = true).
+  /// one of its flags has the other value, e.g. base.fixed = true) and has
+  /// no other form of it switched on (one form per physics).
   bool applicable(const Config& current) const;
   /// The current case with this physics switched on at q > 0.
   Config with(const Config& current, double q) const;
@@ -35,6 +40,9 @@ struct Candidate
 const std::vector<Candidate>& candidate_library();
 /// Throws InputError for an unknown name (lists the library).
 const Candidate& candidate(const std::string& name);
+/// The physics the candidates `names` name when found (their families),
+/// each once, in the order of `names`.
+std::vector<std::string> physics_of(const std::vector<std::string>& names);
 /// The candidates' names, comma separated (for help texts and messages).
 std::string candidate_names();
 /// "name: parameter [unit]; ..." of every candidate (help texts).

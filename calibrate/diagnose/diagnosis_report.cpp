@@ -2,6 +2,7 @@
 #include "diagnosis_report.hpp"
 #include "evidence.hpp"
 #include "candidates.hpp"
+#include "rule_names.hpp"
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -148,6 +149,25 @@ std::string refused_text(const Diagnosis& d)
   return t;
 }
 
+/// The named terms whose form the data cannot tell from another form of
+/// the same physics (separation.hpp).
+std::string form_text(const Diagnosis& d)
+{
+  std::string t;
+  for (const auto& r : d.rounds)
+  {
+    if (!r.accepted || std::find(d.discovered.begin(), d.discovered.end(), r.tested) == d.discovered.end())
+      continue;
+    const Candidate& a = candidate(r.tested);
+    for (const auto& x : r.rivals)
+      if (a.same_physics(candidate(x.candidate)))
+        t += fmt::format(" The physics {} is named, but its form is not decided: {} and {} fit "
+                         "alike (z = {:.2f}); the fit carries {}, the larger margin.",
+                         a.family, r.tested, x.candidate, x.z, r.tested);
+  }
+  return t;
+}
+
 /// The terms the fit carries but the data cannot name (separation.hpp).
 std::string undecided_text(const Diagnosis& d)
 {
@@ -214,8 +234,9 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
   {
     const Candidate& c = candidate(name);
     const std::size_t i = std::find(last.names.begin(), last.names.end(), c.parameter) - last.names.begin();
-    what += fmt::format("{}{} ({}): {} = {:.4g} {} (95 % interval [{:.4g}, {:.4g}])",
-                        what.empty() ? "" : "; ", name, c.physics, c.parameter, last.values[i],
+    const std::string form = c.family == name ? "" : fmt::format(", a form of {}", c.family);
+    what += fmt::format("{}{} ({}{}): {} = {:.4g} {} (95 % interval [{:.4g}, {:.4g}])",
+                        what.empty() ? "" : "; ", name, c.physics, form, c.parameter, last.values[i],
                         c.unit, last.uncertainty.interval[i][0], last.uncertainty.interval[i][1]);
   }
   const std::string rest
@@ -225,9 +246,9 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
             : fmt::format("the remaining residual is still above the noise level (chi2/dof = {:.3f}, "
                           "p = {:.2g}): more is missing than the library explains.",
                           last.chi2 / last.dof, last.gof_p);
-  return fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm); {}{}{}",
-                     what, rms_all(first), rms_all(last), noise_mm, rest, undecided_text(d),
-                     refused_text(d));
+  return fmt::format("Missing physics found: {}. RMS distance {:.3f} -> {:.3f} mm (noise {:.3f} mm); {}{}{}{}",
+                     what, rms_all(first), rms_all(last), noise_mm, rest, form_text(d),
+                     undecided_text(d), refused_text(d));
 }
 
 namespace
@@ -265,15 +286,16 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   j["format"] = "breastsim-diagnosis/1";
   j["noise_sigma_mm"] = 1e3 * d.noise_sigma;
   j["noise_floor"] = noise_floor_json(d, rec);
-  j["noise_floor_spread"] = d.noise_floor == NoiseFloor::local ? "local" : "posture";
-  j["effect_measure"] = effect_measure_name(d.effect_measure);
-  j["refinement_allowance"] = refinement_allowance_name(d.refinement_allowance);
+  j["noise_floor_spread"] = name_of(noise_floor_names(), d.noise_floor);
+  j["effect_measure"] = name_of(effect_measure_names(), d.effect_measure);
+  j["refinement_allowance"] = name_of(refinement_allowance_names(), d.refinement_allowance);
   j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
   j["lost_on_finer_mesh"] = d.lost_on_finer;
   j["rejoined_on_finer_mesh"] = d.rejoined_on_finer;
   j["final_values_from_finer_mesh"] = d.final_on_finer_mesh;
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
+  j["discovered_physics"] = physics_of(d.discovered);
   j["undecided"] = nlohmann::json::array();
   for (const auto& u : d.undecided)
   {

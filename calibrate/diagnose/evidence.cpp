@@ -92,19 +92,9 @@ std::pair<double, double> refinement_criticals(double statistical, double allowa
   return {statistical + allowance / std::pow(o.mesh_ratio, 2 * o.refinement_order), statistical};
 }
 
-const char* refinement_allowance_name(RefinementAllowance a)
-{
-  return a == RefinementAllowance::scaled ? "scaled" : "full";
-}
-
 double judged_effect_mm(const Evidence& e, EffectMeasure measure)
 {
   return measure == EffectMeasure::largest_posture ? e.effect_rms_mm_largest : e.effect_rms_mm_all;
-}
-
-const char* effect_measure_name(EffectMeasure measure)
-{
-  return measure == EffectMeasure::largest_posture ? "largest-posture" : "all";
 }
 
 void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)

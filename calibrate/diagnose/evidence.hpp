@@ -19,8 +19,6 @@ void effect_size(const FitState& without, const FitState& with, Evidence& e);
 /// The effect the practical-significance rule judges: the RMS over all
 /// points or in the posture the term changes most.
 double judged_effect_mm(const Evidence& e, EffectMeasure measure);
-/// "all" or "largest-posture" (the option's value).
-const char* effect_measure_name(EffectMeasure measure);
 
 /// The part of the effect that the 95 % interval cannot tell from the null:
 /// effect x q_lo / q_hat (the effect is linear in q for small q; q = 0 is the
@@ -48,8 +46,6 @@ double continuum_lr(double lr_h, double lr_fine, double ratio, double order);
 ///           order h^p, an LR of order h^2p; none is left in the continuum).
 std::pair<double, double> refinement_criticals(double statistical, double allowance,
                                                const DiagnoseOptions& o);
-/// "full" or "scaled" (the option's value).
-const char* refinement_allowance_name(RefinementAllowance a);
 
 /// The held-out rule (DiagnoseOptions::held_out_check): why it refuses `e`
 /// (its summed held-out chi2 gain is not positive, or no more than half of

@@ -1,4 +1,5 @@
 #include "separation.hpp"
+#include "candidates.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,6 +34,10 @@ void set_aside_inseparable(Diagnosis& d)
       continue;
     if (std::any_of(r.rivals.begin(), r.rivals.end(), [&](const Rival& x) { return found(x.candidate); }))
       continue;
+    const Candidate& a = candidate(r.tested);
+    if (std::all_of(r.rivals.begin(), r.rivals.end(),
+                    [&](const Rival& x) { return a.same_physics(candidate(x.candidate)); }))
+      continue; // only other forms of the same physics: the physics is named
     Undecided u{r.tested, r.rivals};
     d.discovered.erase(std::find(d.discovered.begin(), d.discovered.end(), r.tested));
     d.undecided.push_back(u);

@@ -7,7 +7,9 @@
 //   z = (m_A - m_B) / sqrt(sum_i (d_i - mean d)^2),
 // about N(0, 1) when the two fit equally well. Below the separation level
 // the accepted A is not named unless B is found too (a later round): the
-// hidden physics lies between the two forms and no name is forced.
+// hidden physics lies between the two forms and no name is forced. A rival
+// that is another form of A's physics (candidates.hpp, family) does not
+// set A aside: the physics is named, its form is reported as undecided.
 #include "diagnosis.hpp"
 
 namespace breastsim::calibration

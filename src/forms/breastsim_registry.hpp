@@ -71,6 +71,7 @@ struct CandidateInfo
   double typical;        // size of a clearly visible effect [unit]
   std::vector<CandidateSetting> sets;               // the case keys q sets, in order
   std::vector<std::pair<std::string, bool>> flags;  // case flags set with the term on
+  std::string family;    // the physics it names (its own name unless another form shares it)
 };
 
 /// What a fitted parameter is: sets its search bounds and the
