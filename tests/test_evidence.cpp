@@ -166,12 +166,18 @@ TEST(Evidence, RefinementAllowanceFullOrScaled)
   ASSERT_EQ(e.failed.size(), 1u);
   EXPECT_NE(e.failed[0].find("does not survive refinement: 175.0 on the finer mesh against 150.2"),
             std::string::npos) << e.failed[0];
+  e.candidate = "base_springs";
+  EXPECT_EQ(to_json(e)["refinement_passed"], false);
+  EXPECT_EQ(to_json(e)["physics"], "base_springs"); // no family set: the candidate's own name
+  e.physics = "suspensory_ligament";
+  EXPECT_EQ(to_json(e)["physics"], "suspensory_ligament");
   o.refinement_allowance = RefinementAllowance::scaled;
   std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 138.1, o);
   EXPECT_NEAR(e.critical_fine, 12.1 + 138.1 / std::pow(1.5, 3.0), 1e-12);
   EXPECT_EQ(e.critical_continuum, 12.1);
   judge(e, o, 0.5e-3);
   EXPECT_TRUE(e.failed.empty()) << e.failed[0];
+  EXPECT_EQ(to_json(e)["refinement_passed"], true);
   e.lr_continuum = 12.0; // the continuum still needs the statistical critical value
   judge(e, o, 0.5e-3);
   EXPECT_EQ(e.failed.size(), 1u);

@@ -11,7 +11,8 @@ LR / critical, the misfit share LR / (chi2 - dof) of the model before it,
 the effect RMS over all points, in the posture it changes most and at the
 interval's end nearest the null [mm], the held-out postures' chi2 gains (their sum relative to LR, and how
 many are positive), the refinement check's LR on the finer mesh and in the
-continuum where made, accepted or not and why. Then, for the accepted and
+continuum where made and whether it passed, accepted or not and why; how
+many refits the refinement check met and refused. Then, for the accepted and
 for the refused refits, the range of each measure over the genuine and the
 spurious ones: a measure whose ranges do not overlap separates them.
 Only the standard library.
@@ -49,7 +50,8 @@ def refits(manifest, out):
         hidden = set(entry.get("hidden", []))
         for k, rd in enumerate(dia.get("rounds", [])):
             for ev in rd.get("evidence", []):
-                yield name, k + 1, ev["candidate"], ev["candidate"] in hidden, bool(ev.get("accepted")), ev
+                genuine = ev.get("physics", ev["candidate"]) in hidden  # a form of a hidden physics
+                yield name, k + 1, ev["candidate"], genuine, bool(ev.get("accepted")), ev
 
 
 def fmt(x):
@@ -70,15 +72,44 @@ def ranges(rows):
     return out
 
 
+def refinement_passed(ev):
+    """The refinement check's outcome of one refit: True/False, None where
+    it was not made (diagnosis.json refinement_passed, else from its LRs)."""
+    if "likelihood_ratio_fine" not in ev:
+        return None
+    if "refinement_passed" in ev:
+        return bool(ev["refinement_passed"])
+    # runs before the split critical values held the full allowance in both
+    return (ev["likelihood_ratio_fine"] > ev.get("critical_value_fine", ev["critical_value"])
+            and ev["likelihood_ratio_continuum"] > ev.get("critical_value_continuum", ev["critical_value"]))
+
+
+def refinement_counts(rows):
+    """{genuine: (checked, refused)}: how many refits the refinement check
+    met and how many it refused, for the genuine and the spurious ones."""
+    out = {True: [0, 0], False: [0, 0]}
+    for _, _, _, genuine, _, ev in rows:
+        passed = refinement_passed(ev)
+        if passed is not None:
+            out[genuine][0] += 1
+            out[genuine][1] += not passed
+    return {g: tuple(v) for g, v in out.items()}
+
+
 def print_tables(rows):
     print("| recording | round | candidate | genuine | accepted | LR | critical | "
-          + " | ".join(MEASURES) + " | rejected because |")
-    print("|---" * (7 + len(MEASURES)) + "|---|")
+          + " | ".join(MEASURES) + " | refinement | rejected because |")
+    print("|---" * (7 + len(MEASURES)) + "|---|---|")
     for name, rd, cand, genuine, accepted, ev in rows:
+        ref = {None: "-", True: "passed", False: "refused"}[refinement_passed(ev)]
         print(f"| {name} | {rd} | {cand} | {'yes' if genuine else 'no'} | {'yes' if accepted else 'no'} | "
               f"{ev['likelihood_ratio']:.1f} | {ev['critical_value']:.1f} | "
               + " | ".join(fmt(f(ev)) for f in MEASURES.values())
-              + f" | {'; '.join(ev.get('rejected_because', []))[:160]} |")
+              + f" | {ref} | {'; '.join(ev.get('rejected_because', []))[:160]} |")
+    counts = refinement_counts(rows)
+    print("\nRefinement check: " + "; ".join(
+        f"{label} refits: checked {counts[g][0]}, refused {counts[g][1]}"
+        for g, label in ((True, "genuine"), (False, "spurious"))))
     print("\n| refits | " + " | ".join(MEASURES) + " |")
     print("|---" * (1 + len(MEASURES)) + "|")
     for (accepted, genuine), group in sorted(ranges(rows).items(), reverse=True):
@@ -96,7 +127,8 @@ def selftest():
         manifest = {"recordings": {"r": {"hidden": ["skin"]}}}
         skin = {"candidate": "skin", "accepted": True, "likelihood_ratio": 300.0, "critical_value": 30.0,
                 "misfit_before": 400.0, "effect_rms_mm_all": 0.2, "effect_at_null_edge_mm": 0.18,
-                "held_out_chi2_gain": [100.0, 50.0, -10.0, 10.0], "likelihood_ratio_fine": 270.0}
+                "held_out_chi2_gain": [100.0, 50.0, -10.0, 10.0], "likelihood_ratio_fine": 270.0,
+                "likelihood_ratio_continuum": 250.0}
         lig = {"candidate": "suspensory_ligament", "likelihood_ratio": 40.0, "critical_value": 30.0,
                "misfit_before": 400.0, "effect_rms_mm_all": 0.04, "effect_at_null_edge_mm": 0.03,
                "held_out_chi2_gain": [-5.0, 2.0, -1.0, -1.0], "rejected_because": ["its effect is small"]}
@@ -112,6 +144,16 @@ def selftest():
         assert got[(True, True)]["fine_over_lr"] == (0.9, 0.9, 1), got
         assert got[(False, False)]["held_out_over_lr"] == (-0.125, -0.125, 1), got
         assert "fine_over_lr" not in got[(False, False)], got
+        assert refinement_counts(rows) == {True: (1, 0), False: (0, 0)}, refinement_counts(rows)
+        # a refused check, and a cable form of a hidden ligament counts as genuine
+        cab = dict(lig, candidate="suspensory_cables", physics="suspensory_ligament",
+                   likelihood_ratio_fine=20.0, likelihood_ratio_continuum=10.0,
+                   critical_value_fine=30.0, critical_value_continuum=30.0)
+        manifest["recordings"]["r"]["hidden"] = ["skin", "suspensory_ligament"]
+        (out / "r" / "diagnosis" / "diagnosis.json").write_text(json.dumps({"rounds": [{"evidence": [skin, cab]}]}))
+        rows = list(refits(manifest, out))
+        assert [(r[2], r[3]) for r in rows] == [("skin", True), ("suspensory_cables", True)], rows
+        assert refinement_counts(rows) == {True: (2, 1), False: (0, 0)}, refinement_counts(rows)
     print("evidence_table selftest: OK")
     return 0
 

@@ -92,6 +92,11 @@ std::pair<double, double> refinement_criticals(double statistical, double allowa
   return {statistical + allowance / std::pow(o.mesh_ratio, 2 * o.refinement_order), statistical};
 }
 
+bool survives_refinement(const Evidence& e)
+{
+  return e.lr_fine > e.critical_fine && e.lr_continuum > e.critical_continuum;
+}
+
 double judged_effect_mm(const Evidence& e, EffectMeasure measure)
 {
   return measure == EffectMeasure::largest_posture ? e.effect_rms_mm_largest : e.effect_rms_mm_all;
@@ -126,7 +131,7 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
                                    "candidate has, and the term would stand in for it",
                                    100 * misfit_share, e.lr, e.misfit_before, 100 * min_share,
                                    e.terms_before > 0 ? " (after a found term)" : ""));
-  if (e.refinement_checked && !(e.lr_fine > e.critical_fine && e.lr_continuum > e.critical_continuum))
+  if (e.refinement_checked && !survives_refinement(e))
     e.failed.push_back(fmt::format("its LR does not survive refinement: {:.1f} on the finer mesh "
                                    "against {:.1f}, {:.1f} extrapolated to the continuum against {:.1f}",
                                    e.lr_fine, e.critical_fine, e.lr_continuum, e.critical_continuum));
@@ -162,6 +167,7 @@ std::string evidence_text(const Evidence& e)
 nlohmann::json to_json(const Evidence& e)
 {
   nlohmann::json j = {{"candidate", e.candidate},
+                      {"physics", e.physics.empty() ? e.candidate : e.physics},
                       {"likelihood_ratio", e.lr},
                       {"critical_value", e.critical},
                       {"effect_rms_mm", e.effect_rms_mm},
@@ -182,6 +188,7 @@ nlohmann::json to_json(const Evidence& e)
     j["likelihood_ratio_continuum"] = e.lr_continuum;
     j["critical_value_fine"] = e.critical_fine;
     j["critical_value_continuum"] = e.critical_continuum;
+    j["refinement_passed"] = survives_refinement(e);
   }
   return j;
 }

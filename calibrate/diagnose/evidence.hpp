@@ -19,6 +19,8 @@ void effect_size(const FitState& without, const FitState& with, Evidence& e);
 /// The effect the practical-significance rule judges: the RMS over all
 /// points or in the posture the term changes most.
 double judged_effect_mm(const Evidence& e, EffectMeasure measure);
+/// The refinement check's rule: LR_f and LR_0 both above their critical values.
+bool survives_refinement(const Evidence& e);
 
 /// The part of the effect that the 95 % interval cannot tell from the null:
 /// effect x q_lo / q_hat (the effect is linear in q for small q; q = 0 is the
