@@ -30,6 +30,7 @@ UPRIGHT_SET = [("standing", 0.0), ("supine", 90.0), ("all_fours", -90.0), ("lean
 MIN_RATIO_RECLINED = 4.0
 TARGET_MM = {"weak": 1.0, "strong": 3.0, "pair": 2.0}
 
+SETS = ("main", "validation", "holdout", "confirm", "effect", "refine", "tether")
 N_CONTROLS = 14
 SHAPES_PER_EFFECT = 3
 # candidate -> truth effect; tether shapes 1, 2 are springs, shape 3 cables
@@ -73,7 +74,8 @@ def recordings(which="main"):
     the effect-rule set ("effect", 16: made to test the practical-significance
     measure once more, where it can change a verdict) or the refinement-rule
     set ("refine", 15: weak beds mostly, to test the refinement check's
-    allowance)."""
+    allowance) or the tether-form set ("tether", 15: weak tethers mostly,
+    half of them cables, to test the ligaments' cable form out of sample)."""
     if which == "validation":
         return validation_recordings()
     if which == "holdout":
@@ -84,6 +86,8 @@ def recordings(which="main"):
         return effect_rule_recordings()
     if which == "refine":
         return refinement_rule_recordings()
+    if which == "tether":
+        return tether_form_recordings()
     out = []
     add = _adder(out, 0)
 
@@ -176,6 +180,30 @@ def refinement_rule_recordings():
     docs/DIAGNOSE.md, before any recording of it was generated."""
     shapes = {cand: 8 if cand == "base_springs" else 1 for cand in BY_CANDIDATE}
     return _controls_and_weak_shapes("ref_", REFINE_OFFSET, 53, shapes=shapes)
+
+
+TETHER_OFFSET = 200  # material/posture cycle and seeds 1900+: none shared with the other sets
+
+
+def tether_form_recordings():
+    """4 controls, eight new weak tethers alternating springs and cables (the
+    candidate forms suspensory_ligament and suspensory_cables decide between
+    them) and one new weak shape of each other candidate: defined on
+    2026-12-05 with its test written in docs/DIAGNOSE.md, before any
+    recording of it was generated."""
+    out = []
+    add = _adder(out, TETHER_OFFSET)
+    for i in range(1, 5):
+        add(f"teth_control_{i:02d}", "control", [])
+    tethers = EFFECTS[BY_CANDIDATE["suspensory_ligament"]]
+    for k in range(1, 9):
+        rng = np.random.default_rng([59, 7, k])
+        pattern = tethers.draw_pattern(rng, "cables" if k % 2 == 0 else "springs")
+        add(f"teth_suspensory_ligament_weak_{k}", "weak", [(tethers.NAME, pattern)])
+    for cand, effect in sorted(BY_CANDIDATE.items()):
+        if cand != "suspensory_ligament":
+            add(f"teth_{cand}_weak_1", "weak", [(effect, _pattern(effect, [59, len(cand), ord(cand[0])], 2))])
+    return out
 
 
 def _controls_and_weak_shapes(prefix, offset, shape_seed, shapes=2):

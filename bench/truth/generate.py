@@ -67,7 +67,7 @@ def parse_args():
                     help="the chest wall as a contact penalty of stiffness K [Pa/m] on the skin "
                          "(forms_truth/chest_contact.py; default: no chest wall)")
     ap.add_argument("--points", type=int, default=2000, help="skin points per posture")
-    ap.add_argument("--set", dest="which", choices=["main", "validation", "holdout", "confirm", "effect", "refine"], default="main",
+    ap.add_argument("--set", dest="which", choices=benchmark_set.SETS, default="main",
                     help="the benchmark (main), the validation set or the hold-out set "
                          "(default --out: bench/truth, bench/truth/validation, bench/truth/holdout)")
     a = ap.parse_args()

@@ -51,6 +51,8 @@ ensure_dolfinx()
 
 import numpy as np  # noqa: E402
 
+import benchmark_set  # noqa: E402
+
 from forms_truth.candidate_forms import CANDIDATE_FORMS  # noqa: E402
 from geometry import build_half_cap  # noqa: E402
 from problem import Problems  # noqa: E402
@@ -189,7 +191,7 @@ def material_fixed_values(stored):
 
 def parse_args():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--set", dest="which", choices=["main", "validation", "holdout", "confirm", "effect", "refine"], default="main")
+    ap.add_argument("--set", dest="which", choices=benchmark_set.SETS, default="main")
     ap.add_argument("--only", default="", help="recording names (comma-separated; computed in this order)")
     ap.add_argument("--redo", action="store_true", help="recompute existing entries")
     ap.add_argument("--folder", default=None, help="folder of manifest.json (default: by --set)")

@@ -4,7 +4,9 @@ share no recording name and no noise seed, and have the documented sizes:
 main 42 (14 controls), validation 12 (2 controls), holdout and confirm 12
 each (4 controls, two weak shapes per candidate), effect 16 (4 controls,
 three weak shapes per candidate), refine 15 (4 controls, eight weak beds,
-one weak shape of each other candidate); every lambda/mu of each set is in [2, 10].
+one weak shape of each other candidate), tether 15 (4 controls, eight weak
+tethers, four of them cables, one weak shape of each other candidate); every
+lambda/mu of each set is in [2, 10].
 
 Run: /usr/bin/python3 tests/truth/test_benchmark_sets.py SOURCE_DIR
 """
@@ -15,7 +17,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(sys.argv[1]) / "bench" / "truth"))
 import benchmark_set  # noqa: E402
 
-SIZES = {"main": (42, 14), "validation": (12, 2), "holdout": (12, 4), "confirm": (12, 4), "effect": (16, 4), "refine": (15, 4)}
+SIZES = {"main": (42, 14), "validation": (12, 2), "holdout": (12, 4), "confirm": (12, 4), "effect": (16, 4),
+         "refine": (15, 4), "tether": (15, 4)}
 
 
 def main():
@@ -37,6 +40,13 @@ def main():
     refine = Counter(r["name"].rsplit("_weak_", 1)[0] for r in benchmark_set.recordings("refine")
                      if r["strength_class"] == "weak")
     assert refine == {"ref_base_springs": 8, "ref_gland_core": 1, "ref_skin": 1, "ref_suspensory_ligament": 1}, refine
+    assert set(SIZES) == set(benchmark_set.SETS), benchmark_set.SETS
+    tether = benchmark_set.recordings("tether")
+    variants = Counter(e[1]["variant"] for r in tether for e in r["effects"] if e[0] == "smooth_tethers")
+    assert variants == {"springs": 4, "cables": 4}, variants
+    others = Counter(r["name"].rsplit("_weak_", 1)[0] for r in tether if r["strength_class"] == "weak")
+    assert others == {"teth_suspensory_ligament": 8, "teth_base_springs": 1, "teth_gland_core": 1,
+                      "teth_skin": 1}, others
     shared = [n for n, k in names.items() if k > 1] + [s for s, k in seeds.items() if k > 1]
     assert not shared, f"shared between sets: {shared}"
     print("benchmark sets: OK")
