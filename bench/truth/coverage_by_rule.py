@@ -44,7 +44,7 @@ def read_pseudo_material(manifest_dir):
     (definition 3: fitted with the candidates), {} if absent."""
     out = {}
     for name, entry in pseudo_true_recordings(manifest_dir).items():
-        for cand in entry["candidates"].values():
+        for cand in entry.get("candidates", {}).values():
             if "material" in cand:
                 out[name] = cand["material"]
     return out

@@ -36,6 +36,15 @@ version are recomputed.
     python3 bench/truth/pseudo_true.py --only base_springs_weak_1 --redo
     python3 bench/truth/pseudo_true.py --only A,B --out /tmp/part.json   # a second process: its own file
 
+Another form of a candidate's physics (forms_truth/candidate_forms.py
+OTHER_FORMS, e.g. the ligaments as cables) gets its own pseudo-true value
+with `--form suspensory_ligament=suspensory_cables`: the same fit with that
+form in place of the physics' candidate, stored under the recording's
+"other_forms" (run_diagnose.py compares a discovery named in that form with
+it).
+
+    nice -n 19 python3 bench/truth/pseudo_true.py --form suspensory_ligament=suspensory_cables --only A,B
+
 Writes pseudo_true.json beside the manifest, one entry per recording as
 soon as it is done (resumable).
 """
@@ -53,7 +62,7 @@ import numpy as np  # noqa: E402
 
 import benchmark_set  # noqa: E402
 
-from forms_truth.candidate_forms import CANDIDATE_FORMS  # noqa: E402
+from forms_truth.candidate_forms import CANDIDATE_FORMS, OTHER_FORMS  # noqa: E402
 from geometry import build_half_cap  # noqa: E402
 from problem import Problems  # noqa: E402
 from recording_io import read_manifest, write_json_atomic  # noqa: E402
@@ -98,18 +107,21 @@ class Fitter:
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         return self.solve(entry, hidden, {e["model"]: e["strength"]["value"] for e in entry["effects"]})
 
-    def fit(self, entry, indices=None, u_truth=None, start=None):
+    def fit(self, entry, indices=None, u_truth=None, start=None, form=None):
         """{candidate: q* and its figures} of the candidates replacing the
         hidden effects `indices` jointly (default: every effect with a
         candidate form), mu and lambda fitted with them; `u_truth`: the truth
         solves, computed here if not given; `start`: starting values by
-        candidate or "mu", "lambda" (default: the equivalents, the truth's)."""
+        candidate or "mu", "lambda" (default: the equivalents, the truth's);
+        `form`: (physics, FORM) replaces that physics' effects by the other
+        form FORM (OTHER_FORMS) instead, its values keyed by FORM."""
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         strengths = {e["model"]: e["strength"]["value"] for e in entry["effects"]}
         indices = replaceable(entry) if indices is None else list(indices)
         u_truth = self.truth(entry) if u_truth is None else u_truth
         targets = [entry["effects"][k] for k in indices]
-        forms = [CANDIDATE_FORMS[t["candidate"]] for t in targets]
+        forms = [OTHER_FORMS[form[1]] if form and t["candidate"] == form[0] else CANDIDATE_FORMS[t["candidate"]]
+                 for t in targets]
         others = [h for k, h in enumerate(hidden) if k not in indices]
         u_none = self.solve(entry, others, strengths, u_truth)     # the truth without the replaced effects
         effects = others + [(f.NAME, {}) for f in forms]
@@ -126,7 +138,7 @@ class Fitter:
                     + [start.get(k, entry["material"][k]) for k in MATERIAL])
         y, r, history = gauss_newton(evaluate, y0, u_truth)
         effect_norm = float(np.linalg.norm(self.residual(u_truth, u_none)))
-        return results(targets, y[:n], history, {
+        return results(targets, forms, y[:n], history, {
             "unexplained_share": float(np.linalg.norm(r)) / effect_norm if effect_norm > 0 else None,
             "effect_rms_mm": 1e3 * effect_norm / math.sqrt(self._area_sum(u_truth)),
             "material": {k: math.exp(v) for k, v in zip(MATERIAL, y[n:])}})
@@ -161,15 +173,19 @@ def gauss_newton(evaluate, y, start):
     return y, r, history
 
 
-def results(targets, y, history, common):
-    """Per candidate: its q*, its equivalent, the figures `common` to the fit
-    and its column of the history ([q, ||r||] per step); "joint" for a pair."""
+def results(targets, forms, y, history, common):
+    """Per candidate form: its q*, its equivalent (none for another form of
+    the physics), the figures `common` to the fit and its column of the
+    history ([q, ||r||] per step); "joint" for a pair."""
     if len(targets) > 1:
-        common = {**common, "joint": [t["candidate"] for t in targets]}
-    return {t["candidate"]: {"parameter": t["q_equivalent"]["parameter"], "value": math.exp(y[i]),
-                             "equivalent": t["q_equivalent"]["value"], **common,
-                             "history": [[h[i], h[-1]] for h in history]}
-            for i, t in enumerate(targets)}
+        common = {**common, "joint": [f.CANDIDATE for f in forms]}
+    out = {}
+    for i, (t, f) in enumerate(zip(targets, forms)):
+        same = f.CANDIDATE == t["candidate"]
+        out[f.CANDIDATE] = {"parameter": t["q_equivalent"]["parameter"] if same else f.PARAMETER,
+                            "value": math.exp(y[i]), "equivalent": t["q_equivalent"]["value"] if same else None,
+                            **common, "history": [[h[i], h[-1]] for h in history]}
+    return out
 
 
 def replaceable(entry):
@@ -189,6 +205,10 @@ def material_fixed_values(stored):
     return {c: v["value"] for c, v in stored["candidates"].items()}
 
 
+def fmt(x):
+    return "-" if x is None else f"{x:.4g}"
+
+
 def parse_args():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--set", dest="which", choices=benchmark_set.SETS, default="main")
@@ -197,7 +217,46 @@ def parse_args():
     ap.add_argument("--folder", default=None, help="folder of manifest.json (default: by --set)")
     ap.add_argument("--out", default=None, help="output file (default: pseudo_true.json beside the manifest; "
                                                 "one process per file)")
-    return ap.parse_args()
+    ap.add_argument("--form", default=None, metavar="PHYSICS=FORM",
+                    help="replace the effects of PHYSICS by its other form FORM (" + ", ".join(
+                        f"{f.PHYSICS}={n}" for n, f in OTHER_FORMS.items()) + "); stored under the "
+                    "recording's other_forms.FORM")
+    a = ap.parse_args()
+    if a.form is not None:
+        physics, _, form = a.form.partition("=")
+        if form not in OTHER_FORMS or OTHER_FORMS[form].PHYSICS != physics:
+            ap.error(f"--form {a.form}: allowed: " + ", ".join(f"{f.PHYSICS}={n}" for n, f in OTHER_FORMS.items()))
+        a.form = (physics, form)
+    return a
+
+
+def pending(a, name, entry, stored, only):
+    """True if recording `name` is to be computed: selected, with an effect
+    to replace, and not stored under the current definition (--redo: always)."""
+    if only and name not in only:
+        return False
+    if a.form:
+        return (any(e["candidate"] == a.form[0] for e in entry["effects"])
+                and (a.redo or a.form[1] not in (stored or {}).get("other_forms", {})))
+    return bool(replaceable(entry)) and (a.redo or not stored or not is_current(stored))
+
+
+def compute(fitter, a, name, entry, stored, previous):
+    """The recording's new stored entry: the candidates' values (keeping
+    other forms stored before), or with --form that form's values added."""
+    t0 = time.perf_counter()
+    if a.form:
+        start = {c: v["value"] for c, v in (stored or {}).get("candidates", {}).items()}
+        res = fitter.fit(entry, start=start, form=a.form)
+        forms = {**(stored or {}).get("other_forms", {}), a.form[1]: res}
+        return {**(stored or {}), "other_forms": forms}, res, time.perf_counter() - t0
+    fixed = material_fixed_values(stored or previous.get(name))
+    res = fitter.fit(entry, start=fixed)
+    new = {"seconds": round(time.perf_counter() - t0, 1), "definition_version": DEFINITION_VERSION,
+           "candidates": res, "material_fixed": fixed}
+    if stored and "other_forms" in stored:
+        new["other_forms"] = stored["other_forms"]
+    return new, res, time.perf_counter() - t0
 
 
 def main():
@@ -213,8 +272,7 @@ def main():
     only = [n for n in a.only.split(",") if n]
     out["definition"] = DEFINITION
     todo = [(n, e) for n, e in sorted(manifest["recordings"].items())
-            if replaceable(e) and (not only or n in only)
-            and (a.redo or n not in out["recordings"] or not is_current(out["recordings"][n]))]
+            if pending(a, n, e, out["recordings"].get(n), only)]
     if only:
         todo.sort(key=lambda item: only.index(item[0]))   # in the order given
     print(f"{len(todo)} recording(s)", flush=True)
@@ -225,17 +283,13 @@ def main():
     for name, entry in todo:
         if entry["truth_mesh"]["size_m"] != 0.006 or entry["truth_mesh"].get("rim_size_m"):
             sys.exit(f"pseudo_true.py: {name}: truth mesh {entry['truth_mesh']} is not the uniform 6 mm mesh")
-        t0 = time.perf_counter()
-        fixed = material_fixed_values(out["recordings"].get(name) or previous.get(name))
-        res = fitter.fit(entry, start=fixed)
-        out["recordings"][name] = {"seconds": round(time.perf_counter() - t0, 1),
-                                   "definition_version": DEFINITION_VERSION, "candidates": res,
-                                   "material_fixed": fixed}
+        out["recordings"][name], res, seconds = compute(fitter, a, name, entry, out["recordings"].get(name),
+                                                        previous)
         out["recordings"] = dict(sorted(out["recordings"].items()))
         write_json_atomic(out_path, out)
-        print(name, {c: (f"{v['value']:.4g} (equivalent {v['equivalent']:.4g}, "
+        print(name, {c: (f"{v['value']:.4g} (equivalent {fmt(v['equivalent'])}, "
                          f"unexplained {v['unexplained_share']:.2f})") for c, v in res.items()},
-              f"{out['recordings'][name]['seconds']} s", flush=True)
+              f"{seconds:.1f} s", flush=True)
     return 0
 
 

@@ -48,7 +48,7 @@ def rows_from_markdown(path):
         if not ln.startswith("|"):
             break
         cell = dict(zip(header, (c.strip() for c in ln.strip("|").split("|"))))
-        named = cell["named"]
+        named = cell["named"].split(" (as ")[0]   # the physics; "(as FORM+...)" names the forms
         rows.append({"name": cell["recording"], "class": cell["class"], "seconds": float(cell["s"]),
                      "named": None if named == "failed" else ([] if named == "none" else sorted(named.split("+"))),
                      "intervals": parse_intervals(cell["fitted [95 % interval]"])})
@@ -67,9 +67,12 @@ def rescored(row, entry, pseudo):
         effects = covered_effects(entry, row["named"])
         params = {e["q_equivalent"]["parameter"]: {"value": v, "interval95": [lo, hi]}
                   for e, (v, lo, hi) in zip(effects, row["intervals"])}
+        forms = None
     else:
         params = {c["parameter"]: {"value": c["fitted"], "interval95": c["interval95"]} for c in row["coverage"]}
-    out["coverage"] = coverage_rows(entry, row["named"], params, pseudo)
+        forms = {c["candidate"]: {"term": c.get("form", c["candidate"]), "parameter": c["parameter"]}
+                 for c in row["coverage"]}
+    out["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
     return out
 
 

@@ -96,9 +96,15 @@ def pseudo_true_recordings(manifest_dir):
 
 
 def read_pseudo_true(manifest_dir):
-    """{recording: {candidate: q*}} from pseudo_true.py's output, {} if absent."""
-    return {n: {c: v["value"] for c, v in r["candidates"].items()}
-            for n, r in pseudo_true_recordings(manifest_dir).items()}
+    """{recording: {candidate or form: q*}} from pseudo_true.py's output, {}
+    if absent: the candidates' values, and those of another form of a
+    physics (pseudo_true.py --form, "other_forms") under the form's name."""
+    out = {}
+    for n, r in pseudo_true_recordings(manifest_dir).items():
+        out[n] = {c: v["value"] for c, v in r.get("candidates", {}).items()}
+        for form in r.get("other_forms", {}).values():
+            out[n].update({c: v["value"] for c, v in form.items()})
+    return out
 
 
 def read_result(out, entry, pseudo=None):
@@ -125,7 +131,8 @@ def read_result(out, entry, pseudo=None):
     row["verdict"] = dia.get("verdict")
     params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
-    row["coverage"] = coverage_rows(entry, row["named"], params, pseudo)
+    forms = {f["physics"]: f for f in dia.get("discovered_forms", [])}
+    row["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
     return row
 
 
@@ -135,27 +142,34 @@ def covered_effects(entry, named):
     return [e for e in entry.get("effects", []) if e.get("q_equivalent") and e["candidate"] in named]
 
 
-def coverage_rows(entry, named, params, pseudo):
+def coverage_rows(entry, named, params, pseudo, forms=None):
     """Per hidden effect the diagnosis named: its reference q (pseudo-true
-    where computed, `pseudo` {candidate: q*}, else the equivalent) against
-    the fitted parameter's 95 % interval (`params` {parameter: {"value",
-    "interval95"}})."""
+    where computed, `pseudo` {candidate or form: q*}, else the equivalent)
+    against the fitted parameter's 95 % interval (`params` {parameter:
+    {"value", "interval95"}}). An effect named in another form of its
+    physics (`forms` {physics: {"term", "parameter"}}, diagnosis.json
+    discovered_forms) has that form's parameter and pseudo-true value, and
+    no equivalent."""
     rows = []
     for eff in covered_effects(entry, named):
         q = eff["q_equivalent"]
-        p = params.get(q["parameter"])
+        form = (forms or {}).get(eff["candidate"], {"term": eff["candidate"], "parameter": q["parameter"]})
+        other = form["term"] != eff["candidate"]
+        p = params.get(form["parameter"])
         lo, hi = (p or {}).get("interval95", [None, None])
         covers = lambda v: None if lo is None or hi is None or v is None else bool(lo <= v <= hi)
-        ref = pseudo.get(eff["candidate"])
-        rows.append({"candidate": eff["candidate"], "parameter": q["parameter"],
+        ref = pseudo.get(form["term"])
+        if other and ref is None:
+            q = {**q, "value": None}          # no reference for the other form yet
+        rows.append({"candidate": eff["candidate"], "parameter": form["parameter"], "form": form["term"],
                      "truth": q["value"], "approximate": bool(q.get("approximate")),
                      "fitted": (p or {}).get("value"), "interval95": [lo, hi],
                      "inside": covers(q["value"]), "pseudo_true": ref,
                      "reference": ref if ref is not None else q["value"],
                      "reference_kind": "pseudo-true" if ref is not None else "equivalent",
                      "inside_reference": covers(ref if ref is not None else q["value"]),
-                     # named in another form of the physics (another parameter): no interval to compare
-                     "other_form": p is None})
+                     # named in another form of the physics without its pseudo-true value yet
+                     "other_form": other and ref is None})
     return rows
 
 
@@ -250,8 +264,8 @@ def markdown(s, rows, command):
             f"{f['named_terms']} = {fmt(f['rate'], '.2f')}",
             f"- hidden q inside the reported 95 % interval: {cv['inside']} of {cv['of']} correct discoveries "
             f"({fmt(cv['rate'], '.0%')}; with an exact equivalent: {cv['exact_equivalents_inside']} of "
-            f"{cv['exact_equivalents_of']}; named in another form of the physics, no interval of "
-            f"the equivalent's parameter: {cv.get('named_in_another_form', 0)})",
+            f"{cv['exact_equivalents_of']}; named in another form of the physics, without that "
+            f"form's pseudo-true value: {cv.get('named_in_another_form', 0)})",
             f"- reference q (the pseudo-true value where computed, else the equivalent) inside the 95 % "
             f"interval: {cr['inside']} of {cr['of']} ({fmt(cr['rate'], '.0%')}; pseudo-true values: "
             f"{cr['pseudo_true_inside']} of {cr['pseudo_true_of']})",
@@ -264,7 +278,7 @@ def markdown(s, rows, command):
     for r in rows:
         if r is None:
             continue
-        cov = "; ".join(f"{x['truth']:.3g}" for x in r["coverage"]) or "-"
+        cov = "; ".join(fmt(x['truth']) for x in r["coverage"]) or "-"
         pst = "; ".join(fmt(x.get("pseudo_true")) for x in r["coverage"]) or "-"
         fit = "; ".join(f"{fmt(x['fitted'])} [{fmt(x['interval95'][0])}, {fmt(x['interval95'][1])}]"
                         for x in r["coverage"]) or "-"
@@ -452,6 +466,17 @@ def selftest():
     if s["confusion"]["none"] != {"base_springs": 1, "skin": 0, "suspensory_ligament": 0,
                                   "gland_core": 0, "none": 1}:
         bad["confusion.none"] = s["confusion"]["none"]
+    # a tether named in its cable form: that form's parameter and pseudo-true value, no equivalent
+    entry = {"effects": [{"candidate": "suspensory_ligament",
+                          "q_equivalent": {"parameter": "ligament.k", "value": 2000.0, "approximate": True}}]}
+    params = {"cables.k": {"value": 3000.0, "interval95": [2000.0, 4000.0]}}
+    forms = {"suspensory_ligament": {"term": "suspensory_cables", "parameter": "cables.k"}}
+    row = coverage_rows(entry, ["suspensory_ligament"], params, {}, forms)[0]
+    if not (row["parameter"] == "cables.k" and row["inside"] is None and row["other_form"]):
+        bad["other form without pseudo-true"] = row
+    row = coverage_rows(entry, ["suspensory_ligament"], params, {"suspensory_cables": 3500.0}, forms)[0]
+    if not (row["inside_reference"] is True and row["reference_kind"] == "pseudo-true" and not row["other_form"]):
+        bad["other form with pseudo-true"] = row
     if bad:
         print(f"SELFTEST FAILED: {bad}")
         return 1

@@ -296,6 +296,10 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   j["verdict"] = d.verdict;
   j["discovered"] = d.discovered;
   j["discovered_physics"] = physics_of(d.discovered);
+  j["discovered_forms"] = nlohmann::json::array();
+  for (const auto& name : d.discovered)
+    j["discovered_forms"].push_back(
+        {{"term", name}, {"physics", candidate(name).family}, {"parameter", candidate(name).parameter}});
   j["undecided"] = nlohmann::json::array();
   for (const auto& u : d.undecided)
   {

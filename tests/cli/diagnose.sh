@@ -35,6 +35,10 @@ rec = json.loads((work / "recording.json").read_text())
 d = json.loads((work / "out" / "diagnosis.json").read_text())
 assert "truth" in rec and rec["truth"]["hidden"] == (None if hidden == "control" else hidden)
 found = d["discovered"]
+# Each term found names its physics (a family of forms names the family).
+assert d["discovered_physics"] == found, (d["discovered_physics"], found)
+assert [f["term"] for f in d["discovered_forms"]] == found, d["discovered_forms"]
+assert all(f["physics"] == f["term"] and f["parameter"] for f in d["discovered_forms"]), d["discovered_forms"]
 assert (d["effect_measure"], d["noise_floor_spread"], d["refinement_allowance"]) == ("all", "local", "full"), d
 first, final = d["rounds"][0]["fit"], d["final"]
 rms = lambda f: sum(p["rms_mm"] for p in f["postures"]) / len(f["postures"])

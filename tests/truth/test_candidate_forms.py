@@ -6,6 +6,8 @@ candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
    - uniform bed, u = a constant:  E = |a|^2 / (2 q) A_base,  A_base = pi R^2 / 2;
    - upper-pole springs, u = a:    E = q |a|^2 / 2 A_skin(Z > 0),
                                    A_skin(Z > 0) = pi Rs H / 2 (half of the half cap);
+   - upper-pole cables (another form, OTHER_FORMS), u = e (X - A):
+     E = q/2 e^2 pi Rs / 2 (H^3 / 3 + d_a^2 H); 0 for u = -e (X - A);
    - sharp core, u = e X (F = (1 + e) I): E = q W((1 + e) I) V_core,
      V_core the half cap's volume inside x^2 + z^2 < r_g^2 (gland_ellipsoid.core_volume);
    - the truth's chest wall, u = (0, -d, 0): the skin below height d is
@@ -35,7 +37,7 @@ sys.path.insert(0, str(Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 import numpy as np  # noqa: E402
 
 from forms_truth import chest_contact, tissue  # noqa: E402
-from forms_truth.candidate_forms import CANDIDATE_FORMS, R_G, T_S  # noqa: E402
+from forms_truth.candidate_forms import CANDIDATE_FORMS, D_A, OTHER_FORMS, R_G, T_S  # noqa: E402
 from forms_truth.gland_ellipsoid import core_volume  # noqa: E402
 from pseudo_true import Fitter  # noqa: E402
 
@@ -71,6 +73,16 @@ def closed_forms(fitter):
     springs.set_strength(3000.0)
     check("upper-pole springs, constant u", energy(ctx, springs, const),
           3000.0 * (a @ a) / 2 * math.pi * RS * H / 2, 5e-3)
+
+    cables = OTHER_FORMS["suspensory_cables"].Term(ctx, {}, tis)
+    cables.set_strength(3000.0)
+    e = 0.05
+    # u = e (X - A) = e (0, Y, -d_a): each cable lengthens by e |X - A|,
+    # E = q/2 e^2 int_{Z > 0} (Y^2 + d_a^2) dA = q/2 e^2 pi Rs / 2 (H^3 / 3 + d_a^2 H)
+    along = lambda x: np.stack([0 * x[0], e * x[1], -e * D_A + 0 * x[0]])
+    check("upper-pole cables, stretched along the anchors", energy(ctx, cables, along),
+          3000.0 / 2 * e * e * math.pi * RS / 2 * (H ** 3 / 3 + D_A ** 2 * H), 5e-3)
+    check("upper-pole cables, slack toward the anchors", energy(ctx, cables, lambda x: -along(x)) + 1.0, 1.0, 1e-15)
 
     core = CANDIDATE_FORMS["gland_core"].Term(ctx, {}, tis)
     core.set_strength(0.8)

@@ -10,6 +10,9 @@ recording.
     gland_core:           E = int_B q chi(X) W(F) dV,  chi = 1 where
                           X^2 + Z^2 < r_g^2 (r_g = 30 mm), W eq. (5)
     suspensory_ligament:  E = int_skin q/2 w(X) |u|^2 dA,  w = 1 where Z > 0
+    suspensory_cables:    E = int_skin q/2 w(X) max(|x - A| - |X - A|, 0)^2 dA,
+                          A = (X_x, 0, X_z + d_a), d_a = 20 mm, x = X + u
+                          (the same physics as tension-only cables)
     skin:                 E = int_skin t_s W_s dA,  the relaxed tension-field
                           neo-Hookean membrane of forms/skin.py, mu_s = q,
                           lambda_s = q (keep_ratio, default ratio 1),
@@ -20,6 +23,7 @@ import math
 import ufl
 
 R_G = 0.03  # m, gland.radius of cases/default.toml
+D_A = 0.02  # m, cables.anchor_rise of cases/default.toml
 T_S = 0.0015  # m, skin.thickness of cases/default.toml
 DISC_MIN = 1e-10  # (l1^2 - l2^2)^2 below this: the plain law (forms/skin.py)
 
@@ -84,6 +88,21 @@ class UpperPoleSprings(_Form):
         self.energy = 0.5 * self.q * w * ufl.dot(ctx.u, ctx.u) * ctx.ds("skin")  # q/2 w |u|^2
 
 
+class UpperPoleCables(_Form):
+    NAME = "candidate:suspensory_cables"
+    CANDIDATE = "suspensory_cables"
+    PHYSICS = "suspensory_ligament"
+    PARAMETER = "cables.k"
+
+    def __init__(self, ctx, pattern=None, tissue=None):
+        super().__init__(ctx, self.PARAMETER)
+        X, u = ctx.X, ctx.u
+        w = ufl.conditional(ufl.gt(X[2], 0.0), 1.0, 0.0)
+        A = ufl.as_vector((X[0], 0.0, X[2] + D_A))
+        stretch = ufl.max_value(ufl.sqrt(ufl.dot(X + u - A, X + u - A)) - ufl.sqrt(ufl.dot(X - A, X - A)), 0.0)
+        self.energy = 0.5 * self.q * w * stretch ** 2 * ctx.ds("skin")     # q/2 w <|x-A| - |X-A|>^2
+
+
 def membrane_density(mu, lmbda, l1, l2):
     """W_s(l1, l2) = mu/2 (l1^2 + l2^2 - 2 - 2 ln(l1 l2)) + lambda/2 (l1 l2 - 1)^2."""
     return mu / 2 * (l1 ** 2 + l2 ** 2 - 2 - 2 * ufl.ln(l1 * l2)) + lmbda / 2 * (l1 * l2 - 1) ** 2
@@ -131,3 +150,5 @@ def _module(cls):
 
 CANDIDATE_FORMS = {c.CANDIDATE: _module(c) for c in (UniformBed, SharpCore, UpperPoleSprings,
                                                          TensionFieldSkin)}
+# Other forms of a candidate's physics (pseudo_true.py --form PHYSICS=FORM).
+OTHER_FORMS = {c.CANDIDATE: _module(c) for c in (UpperPoleCables,)}
