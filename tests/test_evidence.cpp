@@ -168,9 +168,10 @@ TEST(Evidence, RefinementAllowanceFullOrScaled)
             std::string::npos) << e.failed[0];
   e.candidate = "base_springs";
   EXPECT_EQ(to_json(e)["refinement_passed"], false);
-  EXPECT_EQ(to_json(e)["physics"], "base_springs"); // no family set: the candidate's own name
-  e.physics = "suspensory_ligament";
-  EXPECT_EQ(to_json(e)["physics"], "suspensory_ligament");
+  EXPECT_EQ(to_json(e)["physics"], "base_springs"); // a candidate's own physics
+  e.candidate = "suspensory_cables";
+  EXPECT_EQ(to_json(e)["physics"], "suspensory_ligament"); // another form of it
+  e.candidate = "base_springs";
   o.refinement_allowance = RefinementAllowance::scaled;
   std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 138.1, o);
   EXPECT_NEAR(e.critical_fine, 12.1 + 138.1 / std::pow(1.5, 3.0), 1e-12);
@@ -313,8 +314,11 @@ TEST(Separation, AnotherFormOfTheSamePhysicsStillNamesIt)
   set_aside_inseparable(d);
   EXPECT_EQ(d.discovered, std::vector<std::string>{"suspensory_cables"});
   EXPECT_TRUE(d.undecided.empty());
+  ASSERT_EQ(same_physics_rivals(d.rounds[0]).size(), 1u);
   // A rival of other physics among them still sets it aside.
   d.rounds[0].rivals.push_back({"skin", 1.1, 20.0});
+  ASSERT_EQ(same_physics_rivals(d.rounds[0]).size(), 1u);
+  EXPECT_EQ(same_physics_rivals(d.rounds[0])[0].candidate, "suspensory_ligament");
   set_aside_inseparable(d);
   EXPECT_TRUE(d.discovered.empty());
   ASSERT_EQ(d.undecided.size(), 1u);

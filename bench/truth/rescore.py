@@ -21,7 +21,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize
+from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms
 
 ROUNDING = 5e-3     # relative half-width of a 3-significant-digit number's last digit
 
@@ -73,6 +73,9 @@ def rescored(row, entry, pseudo):
         forms = {c["candidate"]: {"term": c.get("form", c["candidate"]), "parameter": c["parameter"]}
                  for c in row["coverage"]}
     out["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
+    out["truth_forms"] = truth_forms(entry)
+    if forms is not None and "forms" not in row:   # a run before the forms column: its coverage names them
+        out["forms"] = {c["candidate"]: c["form"] for c in out["coverage"]}
     return out
 
 

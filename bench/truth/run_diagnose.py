@@ -41,6 +41,8 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent
 CANDIDATES = ["base_springs", "skin", "suspensory_ligament", "gland_core"]
+# the candidate form of each truth variant a generator effect names (its pattern's "variant")
+FORM_OF_VARIANT = {"springs": "suspensory_ligament", "cables": "suspensory_cables"}
 BASELINE_SETS = ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"]
 # the diagnosis discretisation: P2 with its curved skin at 12 mm (docs/DIAGNOSE.md)
 DISCRETISATION = ["--order", "2", "--mesh-size", "0.012"]
@@ -128,12 +130,43 @@ def read_result(out, entry, pseudo=None):
     # the physics named (a candidate that is another form of a physics names that physics)
     row["named"] = sorted(dia.get("discovered_physics", dia.get("discovered", [])))
     row["named_forms"] = sorted(dia.get("discovered", []))
+    row["forms"] = {f["physics"]: f["term"] for f in dia.get("discovered_forms", [])}
+    row["truth_forms"] = truth_forms(entry)
     row["verdict"] = dia.get("verdict")
     params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
     forms = {f["physics"]: f for f in dia.get("discovered_forms", [])}
     row["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
     return row
+
+
+def truth_forms(entry):
+    """{physics: candidate form} of the hidden effects whose truth variant
+    has a form of its own in the library (FORM_OF_VARIANT)."""
+    out = {}
+    for eff in entry.get("effects", []):
+        form = FORM_OF_VARIANT.get(eff.get("pattern", {}).get("variant"))
+        if form:
+            out[eff["candidate"]] = form
+    return out
+
+
+def form_tally(rows):
+    """Over the hidden physics named: how often each form carried it
+    ({physics: {form: count}}), and, where the truth's form is known, how
+    often the named form is that one."""
+    tally, matched, known = {}, 0, 0
+    for r in rows:
+        for phys, form in (r.get("forms") or {}).items():
+            if phys not in r["hidden"]:
+                continue
+            tally.setdefault(phys, {}).setdefault(form, 0)
+            tally[phys][form] += 1
+            truth = (r.get("truth_forms") or {}).get(phys)
+            if truth:
+                known += 1
+                matched += form == truth
+    return {"by_physics": tally, "truth_form_named": matched, "truth_form_known": known}
 
 
 def covered_effects(entry, named):
@@ -224,6 +257,7 @@ def summarize(rows):
                                "rate": ratio(sum(c["inside_reference"] for c in cov_ref), len(cov_ref)),
                                "pseudo_true_inside": sum(c["inside_reference"] for c in cov_pseudo),
                                "pseudo_true_of": len(cov_pseudo)},
+        "forms": form_tally(done),
         "seconds": {"median": statistics.median(times) if times else None,
                     "min": min(times) if times else None, "max": max(times) if times else None},
     }
@@ -269,6 +303,11 @@ def markdown(s, rows, command):
             f"- reference q (the pseudo-true value where computed, else the equivalent) inside the 95 % "
             f"interval: {cr['inside']} of {cr['of']} ({fmt(cr['rate'], '.0%')}; pseudo-true values: "
             f"{cr['pseudo_true_inside']} of {cr['pseudo_true_of']})",
+            "- forms of the hidden physics named: " + (
+                "; ".join(f"{ph} " + ", ".join(f"as {fm} {n}" for fm, n in sorted(t.items()))
+                          for ph, t in sorted(s.get("forms", {}).get("by_physics", {}).items())) or "none")
+            + (f" (the truth's own form where it has one: {s['forms']['truth_form_named']} of "
+               f"{s['forms']['truth_form_known']})" if s.get("forms", {}).get("truth_form_known") else ""),
             f"- time per diagnosis: median {fmt(t['median'], '.1f')} s (min {fmt(t['min'], '.1f')}, "
             f"max {fmt(t['max'], '.1f')})",
             f"- not scored (failed or not run): {', '.join(s['failed_or_missing']) or 'none'}",
@@ -477,6 +516,18 @@ def selftest():
     row = coverage_rows(entry, ["suspensory_ligament"], params, {"suspensory_cables": 3500.0}, forms)[0]
     if not (row["inside_reference"] is True and row["reference_kind"] == "pseudo-true" and not row["other_form"]):
         bad["other form with pseudo-true"] = row
+    # forms: a cable truth named as cables, a spring truth named as cables, a false term not counted
+    rows = [{"hidden": ["suspensory_ligament"], "forms": {"suspensory_ligament": "suspensory_cables"},
+             "truth_forms": truth_forms({"effects": [{"candidate": "suspensory_ligament",
+                                                      "pattern": {"variant": "cables"}}]})},
+            {"hidden": ["suspensory_ligament"], "forms": {"suspensory_ligament": "suspensory_cables",
+                                                          "skin": "skin"},
+             "truth_forms": {"suspensory_ligament": "suspensory_ligament"}},
+            {"hidden": ["gland_core"], "forms": {"gland_core": "gland_core"}, "truth_forms": {}}]
+    tally = form_tally(rows)
+    if tally != {"by_physics": {"suspensory_ligament": {"suspensory_cables": 2}, "gland_core": {"gland_core": 1}},
+                 "truth_form_named": 1, "truth_form_known": 2}:
+        bad["form tally"] = tally
     if bad:
         print(f"SELFTEST FAILED: {bad}")
         return 1

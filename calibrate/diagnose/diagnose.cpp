@@ -188,7 +188,6 @@ Evidence cheap_evidence(Search& s, const Candidate& cand, const std::vector<Free
 {
   Evidence e;
   e.candidate = cand.name;
-  e.physics = cand.family;
   e.lr = lr;
   e.critical = critical;
   e.misfit_before = s.state.chi2 - s.state.dof;

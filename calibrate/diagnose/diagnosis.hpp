@@ -116,7 +116,6 @@ void check(const DiagnoseOptions& o);
 struct Evidence
 {
   std::string candidate;
-  std::string physics;                         ///< the physics it names (its family; "": the candidate)
   double lr = 0, critical = 0;                 ///< LR and its critical value (with the mesh allowance)
   std::vector<double> effect_rms_mm, effect_max_mm; ///< per posture
   double effect_rms_mm_all = 0;                ///< RMS over all points

@@ -3,6 +3,7 @@
 #include "evidence.hpp"
 #include "candidates.hpp"
 #include "rule_names.hpp"
+#include "separation.hpp"
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -158,12 +159,10 @@ std::string form_text(const Diagnosis& d)
   {
     if (!r.accepted || std::find(d.discovered.begin(), d.discovered.end(), r.tested) == d.discovered.end())
       continue;
-    const Candidate& a = candidate(r.tested);
-    for (const auto& x : r.rivals)
-      if (a.same_physics(candidate(x.candidate)))
-        t += fmt::format(" The physics {} is named, but its form is not decided: {} and {} fit "
-                         "alike (z = {:.2f}); the fit carries {}, the larger margin.",
-                         a.family, r.tested, x.candidate, x.z, r.tested);
+    for (const auto& x : same_physics_rivals(r))
+      t += fmt::format(" The physics {} is named, but its form is not decided: {} and {} fit "
+                       "alike (z = {:.2f}); the fit carries {}, the larger margin.",
+                       candidate(r.tested).family, r.tested, x.candidate, x.z, r.tested);
   }
   return t;
 }

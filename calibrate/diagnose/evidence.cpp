@@ -1,4 +1,5 @@
 #include "evidence.hpp"
+#include "candidates.hpp"
 #include "linearised_refit.hpp"
 #include <algorithm>
 #include <cmath>
@@ -167,7 +168,7 @@ std::string evidence_text(const Evidence& e)
 nlohmann::json to_json(const Evidence& e)
 {
   nlohmann::json j = {{"candidate", e.candidate},
-                      {"physics", e.physics.empty() ? e.candidate : e.physics},
+                      {"physics", candidate(e.candidate).family},
                       {"likelihood_ratio", e.lr},
                       {"critical_value", e.critical},
                       {"effect_rms_mm", e.effect_rms_mm},

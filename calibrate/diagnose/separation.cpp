@@ -2,6 +2,7 @@
 #include "candidates.hpp"
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace breastsim::calibration
@@ -24,6 +25,17 @@ double separation_z(const FitState& a, const FitState& b, double margin_diff)
   return margin_diff / std::sqrt(ss); // z = (m_A - m_B) / sqrt(sum (d_i - mean d)^2)
 }
 
+std::vector<Rival> same_physics_rivals(const Round& r)
+{
+  std::vector<Rival> out;
+  if (r.tested.empty())
+    return out;
+  const Candidate& a = candidate(r.tested);
+  std::copy_if(r.rivals.begin(), r.rivals.end(), std::back_inserter(out),
+               [&a](const Rival& x) { return a.same_physics(candidate(x.candidate)); });
+  return out;
+}
+
 void set_aside_inseparable(Diagnosis& d)
 {
   auto found = [&d](const std::string& name)
@@ -34,9 +46,7 @@ void set_aside_inseparable(Diagnosis& d)
       continue;
     if (std::any_of(r.rivals.begin(), r.rivals.end(), [&](const Rival& x) { return found(x.candidate); }))
       continue;
-    const Candidate& a = candidate(r.tested);
-    if (std::all_of(r.rivals.begin(), r.rivals.end(),
-                    [&](const Rival& x) { return a.same_physics(candidate(x.candidate)); }))
+    if (same_physics_rivals(r).size() == r.rivals.size())
       continue; // only other forms of the same physics: the physics is named
     Undecided u{r.tested, r.rivals};
     d.discovered.erase(std::find(d.discovered.begin(), d.discovered.end(), r.tested));

@@ -18,6 +18,10 @@ namespace breastsim::calibration
 /// +inf when the two fits have the same residuals and a positive margin.
 double separation_z(const FitState& a, const FitState& b, double margin_diff);
 
+/// The rivals of round `r` that are other forms of the physics its tested
+/// candidate names (candidates.hpp, family).
+std::vector<Rival> same_physics_rivals(const Round& r);
+
 /// Moves each accepted term whose round found a rival closer than the
 /// separation level, and whose rivals were not found themselves, from
 /// d.discovered to d.undecided.
