@@ -21,7 +21,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms
+from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms, FAMILY_OF_FORM
 
 ROUNDING = 5e-3     # relative half-width of a 3-significant-digit number's last digit
 
@@ -48,10 +48,13 @@ def rows_from_markdown(path):
         if not ln.startswith("|"):
             break
         cell = dict(zip(header, (c.strip() for c in ln.strip("|").split("|"))))
-        named = cell["named"].split(" (as ")[0]   # the physics; "(as FORM+...)" names the forms
-        rows.append({"name": cell["recording"], "class": cell["class"], "seconds": float(cell["s"]),
-                     "named": None if named == "failed" else ([] if named == "none" else sorted(named.split("+"))),
-                     "intervals": parse_intervals(cell["fitted [95 % interval]"])})
+        named, _, forms = cell["named"].partition(" (as ")   # the physics; "(as FORM+...)" names the forms
+        row = {"name": cell["recording"], "class": cell["class"], "seconds": float(cell["s"]),
+               "named": None if named == "failed" else ([] if named == "none" else sorted(named.split("+"))),
+               "intervals": parse_intervals(cell["fitted [95 % interval]"])}
+        if forms:
+            row["named_forms"] = sorted(forms.rstrip(")").split("+"))
+        rows.append(row)
     return rows
 
 
@@ -74,8 +77,8 @@ def rescored(row, entry, pseudo):
                  for c in row["coverage"]}
     out["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
     out["truth_forms"] = truth_forms(entry)
-    if forms is not None and "forms" not in row:   # a run before the forms column: its coverage names them
-        out["forms"] = {c["candidate"]: c["form"] for c in out["coverage"]}
+    if "forms" not in row:   # a run before the forms column: the forms it named, by their physics
+        out["forms"] = {FAMILY_OF_FORM.get(t, t): t for t in row.get("named_forms", row["named"])}
     return out
 
 
@@ -172,6 +175,10 @@ def selftest():
             "| c2 | control | none | 0 | none | - | - | - | 50.0 |\n")
         both = rescore([(d / "manifest.json", d / "summary.md"), (pooled / "manifest.json", pooled / "summary.md")])
         assert both["controls"]["of"] == 2 and both["single_effect"]["of"] == 1, both["controls"]
+        cable = rescored({"name": "t", "named": ["suspensory_ligament"], "named_forms": ["suspensory_cables"],
+                          "coverage": []}, {"hidden": ["suspensory_ligament"], "hidden_label": "suspensory_ligament",
+                                            "strength_class": "weak", "effects": []}, {})
+        assert cable["forms"] == {"suspensory_ligament": "suspensory_cables"}, cable
         assert parse_intervals("1.2e-06 [9e-07, 2e-06]; 0.3 [-, 0.5]") == [(1.2e-6, 9e-7, 2e-6), (0.3, None, 0.5)]
     print("selftest passed")
     return 0

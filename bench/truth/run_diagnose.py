@@ -43,6 +43,8 @@ REPO = HERE.parent.parent
 CANDIDATES = ["base_springs", "skin", "suspensory_ligament", "gland_core"]
 # the candidate form of each truth variant a generator effect names (its pattern's "variant")
 FORM_OF_VARIANT = {"springs": "suspensory_ligament", "cables": "suspensory_cables"}
+# the physics of each candidate that is another form of one (forms/: candidate(..., family=...))
+FAMILY_OF_FORM = {"suspensory_cables": "suspensory_ligament"}
 BASELINE_SETS = ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"]
 # the diagnosis discretisation: P2 with its curved skin at 12 mm (docs/DIAGNOSE.md)
 DISCRETISATION = ["--order", "2", "--mesh-size", "0.012"]
