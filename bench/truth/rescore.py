@@ -21,7 +21,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms, FAMILY_OF_FORM
+from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms, family_of_form
 
 ROUNDING = 5e-3     # relative half-width of a 3-significant-digit number's last digit
 
@@ -78,7 +78,8 @@ def rescored(row, entry, pseudo):
     out["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
     out["truth_forms"] = truth_forms(entry)
     if "forms" not in row:   # a run before the forms column: the forms it named, by their physics
-        out["forms"] = {FAMILY_OF_FORM.get(t, t): t for t in row.get("named_forms", row["named"])}
+        family = family_of_form()
+        out["forms"] = {family.get(t, t): t for t in row.get("named_forms", row["named"])}
     return out
 
 

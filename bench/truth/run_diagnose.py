@@ -28,6 +28,7 @@ diagnosis. Only the standard library is needed.
 """
 import argparse
 import concurrent.futures
+import functools
 import json
 import os
 import shlex
@@ -43,8 +44,6 @@ REPO = HERE.parent.parent
 CANDIDATES = ["base_springs", "skin", "suspensory_ligament", "gland_core"]
 # the candidate form of each truth variant a generator effect names (its pattern's "variant")
 FORM_OF_VARIANT = {"springs": "suspensory_ligament", "cables": "suspensory_cables"}
-# the physics of each candidate that is another form of one (forms/: candidate(..., family=...))
-FAMILY_OF_FORM = {"suspensory_cables": "suspensory_ligament"}
 BASELINE_SETS = ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"]
 # the diagnosis discretisation: P2 with its curved skin at 12 mm (docs/DIAGNOSE.md)
 DISCRETISATION = ["--order", "2", "--mesh-size", "0.012"]
@@ -132,12 +131,12 @@ def read_result(out, entry, pseudo=None):
     # the physics named (a candidate that is another form of a physics names that physics)
     row["named"] = sorted(dia.get("discovered_physics", dia.get("discovered", [])))
     row["named_forms"] = sorted(dia.get("discovered", []))
-    row["forms"] = {f["physics"]: f["term"] for f in dia.get("discovered_forms", [])}
+    forms = {f["physics"]: f for f in dia.get("discovered_forms", [])}
+    row["forms"] = {phys: f["term"] for phys, f in forms.items()}
     row["truth_forms"] = truth_forms(entry)
     row["verdict"] = dia.get("verdict")
     params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
-    forms = {f["physics"]: f for f in dia.get("discovered_forms", [])}
     row["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
     return row
 
@@ -151,6 +150,18 @@ def truth_forms(entry):
         if form:
             out[eff["candidate"]] = form
     return out
+
+
+@functools.lru_cache(maxsize=None)
+def family_of_form():
+    """{candidate: its physics} as the forms declare it (forms/model.py
+    CANDIDATES: a candidate that is another form of a physics names it)."""
+    sys.path.insert(0, str(REPO / "forms"))
+    try:
+        import model  # noqa: E402 (UFL; the forms' own registry)
+    finally:
+        sys.path.pop(0)
+    return {name: c["family"] for name, c in model.CANDIDATES.items()}
 
 
 def form_tally(rows):
@@ -287,7 +298,7 @@ def markdown(s, rows, command):
     for lab, counts in s["confusion"].items():
         out.append(f"| {lab} | " + " | ".join(str(counts.get(c, 0)) for c in cols) + " |")
     se, c, f, cv, t = s["single_effect"], s["controls"], s["false_discovery_rate"], s["coverage"], s["seconds"]
-    cr = s["coverage_reference"]
+    cr, form_counts = s["coverage_reference"], s.get("forms", {})
     out += ["",
             f"- single-effect recordings named exactly: {se['exact']} of {se['of']} "
             f"({fmt(se['rate'], '.0%')}); by class: "
@@ -307,9 +318,9 @@ def markdown(s, rows, command):
             f"{cr['pseudo_true_inside']} of {cr['pseudo_true_of']})",
             "- forms of the hidden physics named: " + (
                 "; ".join(f"{ph} " + ", ".join(f"as {fm} {n}" for fm, n in sorted(t.items()))
-                          for ph, t in sorted(s.get("forms", {}).get("by_physics", {}).items())) or "none")
-            + (f" (the truth's own form where it has one: {s['forms']['truth_form_named']} of "
-               f"{s['forms']['truth_form_known']})" if s.get("forms", {}).get("truth_form_known") else ""),
+                          for ph, t in sorted(form_counts.get("by_physics", {}).items())) or "none")
+            + (f" (the truth's own form where it has one: {form_counts['truth_form_named']} of "
+               f"{form_counts['truth_form_known']})" if form_counts.get("truth_form_known") else ""),
             f"- time per diagnosis: median {fmt(t['median'], '.1f')} s (min {fmt(t['min'], '.1f')}, "
             f"max {fmt(t['max'], '.1f')})",
             f"- not scored (failed or not run): {', '.join(s['failed_or_missing']) or 'none'}",
@@ -530,6 +541,10 @@ def selftest():
     if tally != {"by_physics": {"suspensory_ligament": {"suspensory_cables": 2}, "gland_core": {"gland_core": 1}},
                  "truth_form_named": 1, "truth_form_known": 2}:
         bad["form tally"] = tally
+    # every form's physics as the forms declare it: one of the physics this benchmark scores
+    family = family_of_form()
+    if family.get("suspensory_cables") != "suspensory_ligament" or not set(family.values()) <= set(CANDIDATES):
+        bad["family of form"] = family
     if bad:
         print(f"SELFTEST FAILED: {bad}")
         return 1
