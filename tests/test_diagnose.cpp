@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 
 using namespace breastsim;
 using namespace breastsim::calibration;
@@ -83,6 +84,30 @@ TEST(Diagnose, LevenbergMarquardtRecoversAnExponentialModel)
   // A bound that excludes the optimum is respected.
   const auto rb = levenberg_marquardt(f, {0.0, 0.0}, {-3, -3}, {3, std::log(1.0)}, o);
   EXPECT_LE(std::exp(rb.y[1]), 1.0 + 1e-12);
+}
+
+TEST(LevenbergMarquardt, AShortStepUnderHeavyDampingIsNotAMinimum)
+{
+  // r = 100 (y - 3), minimum at y = 3, from y = 0. The first seven trial
+  // steps fail (chi2 huge, as when a trial's forward solves go wrong); the
+  // damping they build up makes the accepted step short (3 / 17 < xtol).
+  int calls = 0;
+  auto f = [&calls](const std::vector<double>& y)
+  {
+    ++calls;
+    const bool failed_trial = calls >= 3 && calls <= 9; // call 1: start, call 2: the Jacobian
+    return std::vector<double>{failed_trial ? 1e6 : 100 * (y[0] - 3)};
+  };
+  LsqOptions o;
+  o.xtol = 0.5;
+  const auto r = levenberg_marquardt(f, {0.0}, {-10}, {10}, o);
+  EXPECT_NEAR(r.y[0], 3.0, 1e-6) << r.stop_reason;
+  EXPECT_LE(r.chi2, o.chi2_tol) << r.stop_reason;
+  // Stopping on the short step alone would end at y = 3 / 17.
+  calls = 0;
+  o.chi2_tol = std::numeric_limits<double>::infinity();
+  const auto early = levenberg_marquardt(f, {0.0}, {-10}, {10}, o);
+  EXPECT_NEAR(early.y[0], 3.0 / 17, 0.01) << early.stop_reason;
 }
 
 namespace

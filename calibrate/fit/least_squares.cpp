@@ -15,16 +15,19 @@ double sum_squares(const std::vector<double>& r)
   return s;
 }
 
-/// Up to 8 damped steps (J^T J + lambda diag(J^T J)) dy = -J^T r from res.y,
-/// clamped to the bounds, until one decreases chi2 (lambda / 3 after it,
-/// x 4 after each rejected one); res moves there. max_step: the largest
-/// |dy| of the accepted step; decrease: its relative decrease of chi2.
+/// Damped steps (J^T J + lambda diag(J^T J)) dy = -J^T r from res.y, clamped
+/// to the bounds, until one decreases chi2 (lambda / 3 after it, x 4 after
+/// each rejected one; res moves there), or the rejected steps are shorter
+/// than min_step in every ln p (a minimum within that resolution), or
+/// max_trials were rejected. max_step: the largest |dy| of the accepted
+/// step; decrease: its relative decrease of chi2.
 bool damped_step(const ResidualFunction& f, const Matrix& A, const std::vector<double>& g,
-                 const std::vector<double>& lo, const std::vector<double>& hi, LsqResult& res,
-                 double& lambda, double& max_step, double& decrease)
+                 const std::vector<double>& lo, const std::vector<double>& hi, double min_step,
+                 LsqResult& res, double& lambda, double& max_step, double& decrease)
 {
+  constexpr int max_trials = 16;
   const std::size_t n = g.size();
-  for (int attempt = 0; attempt < 8; ++attempt)
+  for (int attempt = 0; attempt < max_trials; ++attempt)
   {
     Matrix M = A;
     for (std::size_t a = 0; a < n; ++a)
@@ -44,7 +47,7 @@ bool damped_step(const ResidualFunction& f, const Matrix& A, const std::vector<d
       y1[a] = std::clamp(res.y[a] + dy[a], lo[a], hi[a]);
       max_step = std::max(max_step, std::abs(y1[a] - res.y[a]));
     }
-    if (max_step == 0)
+    if (max_step == 0 || (attempt > 0 && max_step < min_step))
       return false;
     const auto r1 = f(y1);
     ++res.evaluations;
@@ -61,6 +64,53 @@ bool damped_step(const ResidualFunction& f, const Matrix& A, const std::vector<d
     lambda *= 4;
   }
   return false;
+}
+
+/// The decrease of chi2 the Gauss-Newton model |r + J dy|^2 predicts for its
+/// step dy = -(J^T J)^-1 J^T r clamped to the bounds:
+///     -(2 g.dy + dy.A dy),  A = J^T J, g = J^T r  (0 if A is singular).
+double gauss_newton_decrease(const Matrix& A, const std::vector<double>& g, const std::vector<double>& y,
+                             const std::vector<double>& lo, const std::vector<double>& hi)
+{
+  const std::size_t n = g.size();
+  std::vector<double> minus_g(n), dy;
+  for (std::size_t a = 0; a < n; ++a)
+    minus_g[a] = -g[a];
+  if (!solve_dense(A, minus_g, dy))
+    return 0;
+  for (std::size_t a = 0; a < n; ++a)
+    dy[a] = std::clamp(y[a] + dy[a], lo[a], hi[a]) - y[a];
+  double change = 0;
+  for (std::size_t a = 0; a < n; ++a)
+  {
+    change += 2 * g[a] * dy[a];
+    for (std::size_t b = 0; b < n; ++b)
+      change += dy[a] * A[a][b] * dy[b];
+  }
+  return -change;
+}
+
+/// After a short step (below o.xtol, or a relative decrease below
+/// o.ftol_rel): res.J becomes the Jacobian at res.y, and the fit has
+/// converged if the Gauss-Newton model there predicts at most o.chi2_tol
+/// further decrease (res.stop_reason says so).
+bool converged_after_short_step(const ResidualFunction& f, const std::vector<double>& lo,
+                                const std::vector<double>& hi, const LsqOptions& o,
+                                double max_step, LsqResult& res)
+{
+  res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);
+  Matrix A;
+  std::vector<double> g;
+  normal_equations(res.J, res.r, res.y.size(), A, g);
+  const double predicted = gauss_newton_decrease(A, g, res.y, lo, hi);
+  if (predicted > o.chi2_tol)
+    return false;
+  const std::string why = max_step < o.xtol
+                              ? fmt::format("step below {:g} in ln p", o.xtol)
+                              : fmt::format("chi2 decreased by less than {:g} (relative)", o.ftol_rel);
+  res.stop_reason =
+      fmt::format("{}; the Gauss-Newton model predicts chi2 to fall by {:.2g} more", why, predicted);
+  return true;
 }
 } // namespace
 
@@ -151,7 +201,7 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
     std::vector<double> g;
     normal_equations(res.J, res.r, n, A, g);
     double max_step = 0, decrease = 0;
-    if (!damped_step(f, A, g, lo, hi, res, lambda, max_step, decrease))
+    if (!damped_step(f, A, g, lo, hi, o.xtol / 10, res, lambda, max_step, decrease))
     {
       res.stop_reason = "no step decreases chi2 (at a minimum within the bounds)";
       break;
@@ -160,16 +210,12 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
     res.iterations = it + 1;
     if (progress)
       progress(res.iterations, res.chi2, res.y);
-    if (decrease < o.ftol_rel)
-    {
-      res.stop_reason = fmt::format("chi2 decreased by less than {:g} (relative)", o.ftol_rel);
-      it = o.max_iterations; // stop
-    }
-    if (max_step < o.xtol)
-    {
-      res.stop_reason = fmt::format("step below {:g} in ln p", o.xtol);
+    if (max_step >= o.xtol && decrease >= o.ftol_rel)
+      continue;
+    have_J = true;
+    if (converged_after_short_step(f, lo, hi, o, max_step, res))
       break;
-    }
+    lambda = std::min(lambda, 1e-3); // the damping, not the optimum, made the step short
   }
   if (!have_J) // Jacobian at the final point (uncertainty, score tests)
     res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);

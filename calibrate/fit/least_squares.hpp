@@ -20,7 +20,11 @@ struct LsqOptions
   int max_iterations = 20;
   double fd_step = 1e-3;   ///< forward-difference step in y
   double xtol = 1e-3;      ///< stop when max |dy| falls below this
-  double ftol_rel = 1e-6;  ///< ... or chi2 decreases less than this, relatively
+  double ftol_rel = 1e-6;  ///< ... or chi2 decreases less than this, relatively,
+  /// provided the Gauss-Newton model at that point predicts at most this
+  /// further decrease of chi2 (a short step under heavy damping is not a
+  /// minimum: along a curved valley it stops the fit far from one)
+  double chi2_tol = 0.1;
   /// The Jacobian's columns over MPI sub-communicators (--ranks-per-case);
   /// null: in turn, on the residual function's communicator.
   const CaseGroups* groups = nullptr;
