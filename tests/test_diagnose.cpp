@@ -110,6 +110,29 @@ TEST(LevenbergMarquardt, AShortStepUnderHeavyDampingIsNotAMinimum)
   EXPECT_NEAR(early.y[0], 3.0 / 17, 0.01) << early.stop_reason;
 }
 
+TEST(LevenbergMarquardt, RejectedTrialsEndTheFitOnlyWhenTheyAreShort)
+{
+  // r = 100 (y - 3) from y = 0. Ten trial steps in a row fail: the eleventh,
+  // damped to 3 / 1050 (> xtol / 10), is taken and the fit goes on to y = 3.
+  int calls = 0;
+  auto f = [&calls](const std::vector<double>& y)
+  {
+    ++calls;
+    const bool failed_trial = calls >= 3 && calls <= 12;
+    return std::vector<double>{failed_trial ? 1e6 : 100 * (y[0] - 3)};
+  };
+  const LsqOptions o;
+  const auto r = levenberg_marquardt(f, {0.0}, {-10}, {10}, o);
+  EXPECT_NEAR(r.y[0], 3.0, 1e-6) << r.stop_reason;
+  // Where every trial fails, the trials end once they are shorter than
+  // xtol / 10 (13 trials), before the 16 allowed.
+  auto every_trial_fails = [](const std::vector<double>& y)
+  { return std::vector<double>{100 * (y[0] - 3) + (y[0] != 0.0 ? 1e6 : 0.0)}; };
+  const auto stuck = levenberg_marquardt(every_trial_fails, {0.0}, {-10}, {10}, o);
+  EXPECT_EQ(stuck.y[0], 0.0);
+  EXPECT_LT(stuck.evaluations, 1 + 1 + 16 + 1) << stuck.stop_reason; // start, Jacobian, trials, final J
+}
+
 namespace
 {
 nlohmann::json good_recording()
