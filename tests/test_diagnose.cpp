@@ -133,6 +133,22 @@ TEST(LevenbergMarquardt, RejectedTrialsEndTheFitOnlyWhenTheyAreShort)
   EXPECT_LT(stuck.evaluations, 1 + 1 + 16 + 1) << stuck.stop_reason; // start, Jacobian, trials, final J
 }
 
+TEST(LevenbergMarquardt, GaussNewtonStepSolvesTheDampedNormalEquations)
+{
+  // A = [[4, 1], [1, 2]], g = [1, 3]: (A + lambda diag(A)) dy = -g.
+  const Matrix A = {{4, 1}, {1, 2}};
+  const std::vector<double> g = {1, 3};
+  for (double lambda : {0.0, 0.5})
+  {
+    const auto dy = gauss_newton_step(A, g, lambda);
+    ASSERT_EQ(dy.size(), 2u);
+    EXPECT_NEAR((4 + 4 * lambda) * dy[0] + dy[1], -1, 1e-12) << lambda;
+    EXPECT_NEAR(dy[0] + (2 + 2 * lambda) * dy[1], -3, 1e-12) << lambda;
+  }
+  EXPECT_NEAR(gauss_newton_step(A, g)[0], 1.0 / 7, 1e-12); // -A^-1 g = (1/7, -11/7)
+  EXPECT_TRUE(gauss_newton_step({{1, 1}, {1, 1}}, {1, 1}).empty()) << "a singular A has no step";
+}
+
 namespace
 {
 nlohmann::json good_recording()

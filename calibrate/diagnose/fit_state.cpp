@@ -125,22 +125,6 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
   return make_state(c, frees, r.y, r.J, e, r.evaluations + 1);
 }
 
-namespace
-{
-/// The Gauss-Newton step -(J^T J)^-1 J^T r (empty if J^T J is singular).
-std::vector<double> gauss_newton_step(const Matrix& J, const std::vector<double>& r, std::size_t n)
-{
-  Matrix A;
-  std::vector<double> g, delta;
-  normal_equations(J, r, n, A, g);
-  for (double& x : g)
-    x = -x;
-  if (!solve_dense(A, g, delta))
-    delta.clear();
-  return delta;
-}
-} // namespace
-
 FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::vector<Free>& frees,
                             const FitState& from, const std::string& label)
 {
@@ -153,7 +137,10 @@ FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::v
   const std::size_t n = y.size();
   for (int k = 0; k < max_steps && n > 0 && from.J.size() == best.r.size(); ++k)
   {
-    const auto delta = gauss_newton_step(from.J, best.r, n);
+    Matrix A;
+    std::vector<double> g;
+    normal_equations(from.J, best.r, n, A, g);
+    const auto delta = gauss_newton_step(A, g); // -(J^T J)^-1 J^T r
     y = step_within_bounds(log_values(best), delta, frees);
     double largest = 0;
     for (double d : delta)

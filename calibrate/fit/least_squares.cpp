@@ -29,13 +29,8 @@ bool damped_step(const ResidualFunction& f, const Matrix& A, const std::vector<d
   const std::size_t n = g.size();
   for (int attempt = 0; attempt < max_trials; ++attempt)
   {
-    Matrix M = A;
-    for (std::size_t a = 0; a < n; ++a)
-      M[a][a] += lambda * std::max(A[a][a], 1e-12);
-    std::vector<double> minus_g(n), dy;
-    for (std::size_t a = 0; a < n; ++a)
-      minus_g[a] = -g[a];
-    if (!solve_dense(M, minus_g, dy))
+    const auto dy = gauss_newton_step(A, g, lambda);
+    if (dy.empty() && n > 0) // singular
     {
       lambda *= 4;
       continue;
@@ -73,10 +68,8 @@ double gauss_newton_decrease(const Matrix& A, const std::vector<double>& g, cons
                              const std::vector<double>& lo, const std::vector<double>& hi)
 {
   const std::size_t n = g.size();
-  std::vector<double> minus_g(n), dy;
-  for (std::size_t a = 0; a < n; ++a)
-    minus_g[a] = -g[a];
-  if (!solve_dense(A, minus_g, dy))
+  auto dy = gauss_newton_step(A, g);
+  if (dy.empty())
     return 0;
   for (std::size_t a = 0; a < n; ++a)
     dy[a] = std::clamp(y[a] + dy[a], lo[a], hi[a]) - y[a];
@@ -113,6 +106,21 @@ bool converged_after_short_step(const ResidualFunction& f, const std::vector<dou
   return true;
 }
 } // namespace
+
+std::vector<double> gauss_newton_step(const Matrix& A, const std::vector<double>& g, double lambda)
+{
+  const std::size_t n = g.size();
+  Matrix M = A;
+  std::vector<double> minus_g(n), dy;
+  for (std::size_t a = 0; a < n; ++a)
+  {
+    M[a][a] += lambda * std::max(A[a][a], 1e-12);
+    minus_g[a] = -g[a];
+  }
+  if (!solve_dense(std::move(M), std::move(minus_g), dy))
+    dy.clear();
+  return dy;
+}
 
 bool solve_dense(Matrix A, std::vector<double> b, std::vector<double>& x)
 {

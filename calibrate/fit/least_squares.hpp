@@ -59,6 +59,11 @@ LsqResult levenberg_marquardt(
 void normal_equations(const Matrix& J, const std::vector<double>& r, std::size_t n, Matrix& A,
                       std::vector<double>& g);
 
+/// The damped Gauss-Newton step dy of the normal equations A = J^T J,
+/// g = J^T r:  (A + lambda diag(A)) dy = -g  (lambda = 0: the Gauss-Newton
+/// step). Empty if the matrix is singular to working precision.
+std::vector<double> gauss_newton_step(const Matrix& A, const std::vector<double>& g, double lambda = 0);
+
 /// Solve the small dense system A x = b (Gaussian elimination with partial
 /// pivoting); false if A is singular to working precision.
 bool solve_dense(Matrix A, std::vector<double> b, std::vector<double>& x);
