@@ -24,7 +24,9 @@ run again (unless --rerun). Writes OUT/summary.json and OUT/summary.md:
 confusion matrix (hidden -> named), exact verdicts on single-effect
 recordings, false discoveries on the controls, false-discovery rate,
 coverage of the hidden value q by the reported 95 % interval, time per
-diagnosis. Only the standard library is needed.
+diagnosis. Running and scoring need only the standard library; the
+selftest and rescoring runs older than their "forms" field read the
+candidates' families from forms/model.py, and so need UFL (/usr/bin/python3).
 """
 import argparse
 import concurrent.futures
@@ -156,9 +158,13 @@ def truth_forms(entry):
 def family_of_form():
     """{candidate: its physics} as the forms declare it (forms/model.py
     CANDIDATES: a candidate that is another form of a physics names it)."""
-    sys.path.insert(0, str(REPO / "forms"))
+    import importlib.util
+    path = REPO / "forms" / "model.py"
+    spec = importlib.util.spec_from_file_location("breastsim_forms_model", path)
+    model = importlib.util.module_from_spec(spec)
+    sys.path.insert(0, str(path.parent))  # model.py imports its sibling term modules
     try:
-        import model  # noqa: E402 (UFL; the forms' own registry)
+        spec.loader.exec_module(model)  # needs UFL: the forms' own registry
     finally:
         sys.path.pop(0)
     return {name: c["family"] for name, c in model.CANDIDATES.items()}
