@@ -76,7 +76,7 @@ def param(key, unit, default, lo, hi, doc, lo_open=False, shape=()):
                 lo_open=lo_open, shape=list(shape))
 
 
-def candidate(parameter, unit, typical, physics, sets, flags=None, family=None):
+def candidate(parameter, unit, typical, physics, sets, flags=None, family=None, extends=None):
     """Metadata of a diagnosis candidate (docs/DIAGNOSE.md): the term switched
     on with one scalar q >= 0, nested in the model (q = 0 reproduces the model
     without the term).
@@ -93,10 +93,14 @@ def candidate(parameter, unit, typical, physics, sets, flags=None, family=None):
     different form of the same physics (e.g. the ligaments as springs or as
     cables; default: the term's own name). The diagnosis switches on at
     most one form of a family, and two forms of one family that the data
-    cannot tell apart still name the family.
+    cannot tell apart still name the family. extends: the candidate this one
+    refines (e.g. a regional variation of the skin): it names that
+    candidate's physics and applies only where that term is on, so a later
+    term must explain the residual better than the found physics' own
+    variation does (docs/DIAGNOSE.md); not with family.
     """
     return dict(parameter=parameter, unit=unit, typical=typical, physics=physics,
-                sets=dict(sets), flags=dict(flags or {}), family=family)
+                sets=dict(sets), flags=dict(flags or {}), family=family, extends=extends)
 
 
 def fit_alias(target, role):

@@ -57,7 +57,8 @@ def candidate_row(term, c):
     sets = ", ".join(f"{{{cstr(k)}, CandidateRule::{RULES[r]}}}" for k, r in c["sets"])
     flags = ", ".join(f"{{{cstr(k)}, {'true' if v else 'false'}}}" for k, v in c["flags"])
     return (f"{{{cstr(term)}, {cstr(c['parameter'])}, {cstr(c['unit'])}, {cstr(c['physics'])}, "
-            f"{num(c['typical'])}, {{{sets}}}, {{{flags}}}, {cstr(c['family'] or term)}}}")
+            f"{num(c['typical'])}, {{{sets}}}, {{{flags}}}, {cstr(c['family'] or term)}, "
+            f"{cstr(c['extends'])}}}")
 
 
 def alias_row(alias, a):

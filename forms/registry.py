@@ -9,6 +9,7 @@ TERMS = [
     "tissue",
     "gravity",
     "skin",
+    "skin_upper_pole",
     "base_springs",
     "sutures",
     "suspensory_ligament",

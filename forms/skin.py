@@ -43,35 +43,39 @@ CANDIDATE = candidate("skin.mu", "Pa", 2e4,
                       sets={"mu_s": "q", "lmbda_s": "keep_ratio"})
 
 
-def membrane_density(l1, l2):
+def membrane_density(mu, lmbda, l1, l2):
     """W_s in principal stretches."""
-    return (mu_s / 2 * (l1 ** 2 + l2 ** 2 - 2 - 2 * ln(l1 * l2))
-            + lmbda_s / 2 * (l1 * l2 - 1) ** 2)
+    return mu / 2 * (l1 ** 2 + l2 ** 2 - 2 - 2 * ln(l1 * l2)) + lmbda / 2 * (l1 * l2 - 1) ** 2
 
 
-P = outer_np(N)
-C_s = P * F.T * F * P
-cofN = J * inv(F).T * N
-J_s = sqrt(dot(cofN, cofN))
-I1 = tr(C_s)
-W_plain = mu_s / 2 * (I1 - 2 - 2 * ln(J_s)) + lmbda_s / 2 * (J_s - 1) ** 2
+def skin_density(mu, lmbda, tension_only):
+    """W_s per unit reference volume of skin with moduli (mu, lmbda): the
+    relaxed tension-field law where tension_only > 0.5, else the plain one."""
+    P = outer_np(N)
+    C_s = P * F.T * F * P
+    cofN = J * inv(F).T * N
+    J_s = sqrt(dot(cofN, cofN))
+    I1 = tr(C_s)
+    W_plain = mu / 2 * (I1 - 2 - 2 * ln(J_s)) + lmbda / 2 * (J_s - 1) ** 2
+    # Principal stretches. Where they (nearly) coincide, d = (l1^2 - l2^2)^2 < 1e-10,
+    # the eigen-decomposition is singular; there the state is either taut or (for
+    # equibiaxial compression) slack, and the plain law is used: exact at the
+    # identity (zero stress, no round-off amplification) and taut states.
+    disc = I1 ** 2 - 4 * J_s ** 2
+    disc_safe = max_value(disc, 1e-10)
+    l1 = sqrt((I1 + sqrt(disc_safe)) / 2)
+    l2 = J_s / l1
+    natural = (lmbda * l1 + sqrt(lmbda ** 2 * l1 ** 2 + 4 * mu * (mu + lmbda * l1 ** 2))) \
+        / (2 * (mu + lmbda * l1 ** 2))
+    W_relaxed = conditional(gt(disc, 1e-10),
+                            conditional(gt(l1, 1.0),
+                                        conditional(lt(l2, natural), membrane_density(mu, lmbda, l1, natural),
+                                                    W_plain),
+                                        0.0),
+                            W_plain)
+    return conditional(gt(tension_only, 0.5), W_relaxed, W_plain)
 
-# Principal stretches. Where they (nearly) coincide, d = (l1^2 - l2^2)^2 < 1e-10,
-# the eigen-decomposition is singular; there the state is either taut or (for
-# equibiaxial compression) slack, and the plain law is used: exact at the
-# identity (zero stress, no round-off amplification) and taut states.
-disc = I1 ** 2 - 4 * J_s ** 2
-disc_safe = max_value(disc, 1e-10)
-l1 = sqrt((I1 + sqrt(disc_safe)) / 2)
-l2 = J_s / l1
-natural = (lmbda_s * l1 + sqrt(lmbda_s ** 2 * l1 ** 2 + 4 * mu_s * (mu_s + lmbda_s * l1 ** 2))) \
-    / (2 * (mu_s + lmbda_s * l1 ** 2))
-W_relaxed = conditional(gt(disc, 1e-10),
-                        conditional(gt(l1, 1.0),
-                                    conditional(lt(l2, natural), membrane_density(l1, natural),
-                                                W_plain),
-                                    0.0),
-                        W_plain)
-W_s = conditional(gt(skin_tension_only, 0.5), W_relaxed, W_plain)
+
+W_s = skin_density(mu_s, lmbda_s, skin_tension_only)
 
 ENERGY = t_s * W_s * ds("skin", "surface")

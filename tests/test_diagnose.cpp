@@ -239,16 +239,19 @@ TEST(Candidates, EachIsNestedAtItsNullValue)
   const auto u0 = solve(c);
   for (const auto& [term, key] : std::vector<std::pair<std::string, std::string>>{
            {"suspensory_ligament", "ligament.k"}, {"suspensory_cables", "cables.k"},
-           {"gland_core", "gland.excess"}})
+           {"gland_core", "gland.excess"}, {"skin_upper_pole", "skin_upper_pole.mu"}})
   {
     Config on = c;
     on.set("terms." + term, true);
     on.set(key, 0.0);
+    for (const auto& s : candidate(term).sets) // a modulus pair: both at 0
+      if (s.rule == generated::CandidateRule::keep_ratio)
+        on.set(s.key, 0.0);
     const auto u1 = solve(on);
     const auto [diff, size] = fixtures::max_difference(u1, u0);
     EXPECT_LT(diff, 1e-12 * size) << term;
     // And a positive value changes the answer (the term acts).
-    on.set(key, candidate(term).typical);
+    on = candidate(term).with(c, candidate(term).typical);
     const auto u2 = solve(on);
     double change = 0;
     for (std::size_t i = 0; i < u0.size(); ++i)
@@ -273,21 +276,22 @@ TEST(Candidates, EachIsNestedAtItsNullValue)
 
 TEST(Candidates, TableIsWhatTheFormsDeclare)
 {
-  // The CANDIDATE of each term in forms/ (skin.py, base_springs.py,
-  // suspensory_ligament.py, suspensory_cables.py, gland_core.py), in the
-  // order of forms/registry.py.
+  // The CANDIDATE of each term in forms/ (skin.py, skin_upper_pole.py,
+  // base_springs.py, suspensory_ligament.py, suspensory_cables.py,
+  // gland_core.py), in the order of forms/registry.py.
   struct Declared
   {
     std::string name, parameter, unit, first_key;
     double typical;
-    std::string family;
+    std::string family, extends;
   };
   const std::vector<Declared> declared = {
-      {"skin", "skin.mu", "Pa", "skin.mu", 2e4, "skin"},
-      {"base_springs", "base.compliance", "m/Pa", "base.c", 5e-6, "base_springs"},
-      {"suspensory_ligament", "ligament.k", "Pa/m", "ligament.k", 2e3, "suspensory_ligament"},
-      {"suspensory_cables", "cables.k", "Pa/m", "cables.k", 2e3, "suspensory_ligament"},
-      {"gland_core", "gland.excess", "1", "gland.excess", 2.0, "gland_core"}};
+      {"skin", "skin.mu", "Pa", "skin.mu", 2e4, "skin", ""},
+      {"skin_upper_pole", "skin_upper_pole.mu", "Pa", "skin_upper_pole.mu", 2e4, "skin", "skin"},
+      {"base_springs", "base.compliance", "m/Pa", "base.c", 5e-6, "base_springs", ""},
+      {"suspensory_ligament", "ligament.k", "Pa/m", "ligament.k", 2e3, "suspensory_ligament", ""},
+      {"suspensory_cables", "cables.k", "Pa/m", "cables.k", 2e3, "suspensory_ligament", ""},
+      {"gland_core", "gland.excess", "1", "gland.excess", 2.0, "gland_core", ""}};
   const auto& lib = candidate_library();
   ASSERT_EQ(lib.size(), declared.size());
   for (std::size_t i = 0; i < lib.size(); ++i)
@@ -297,11 +301,13 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
     EXPECT_EQ(lib[i].unit, declared[i].unit);
     EXPECT_DOUBLE_EQ(lib[i].typical, declared[i].typical);
     EXPECT_EQ(lib[i].family, declared[i].family);
+    EXPECT_EQ(lib[i].extends, declared[i].extends);
     ASSERT_FALSE(lib[i].sets.empty());
     EXPECT_EQ(lib[i].sets[0].key, declared[i].first_key);
     EXPECT_FALSE(lib[i].physics.empty());
   }
-  EXPECT_EQ(candidate_names(), "skin, base_springs, suspensory_ligament, suspensory_cables, gland_core");
+  EXPECT_EQ(candidate_names(),
+            "skin, skin_upper_pole, base_springs, suspensory_ligament, suspensory_cables, gland_core");
   // Every key a candidate sets is a parameter of its own term, and every
   // flag a case key; the candidate is a registered term.
   for (const auto& c : lib)
@@ -372,6 +378,30 @@ TEST(Candidates, OneFormPerPhysics)
             (std::vector<std::string>{"skin", "suspensory_ligament"}));
   EXPECT_EQ(physics_of({"suspensory_cables", "suspensory_ligament"}),
             (std::vector<std::string>{"suspensory_ligament"}));
+}
+
+TEST(Candidates, AnExtensionAppliesOnlyOnTopOfItsBase)
+{
+  // skin_upper_pole refines the skin: no candidate while the skin is off,
+  // one once it is on; found, it names the skin, and the skin stays in.
+  Config c;
+  c.set("terms.skin", false);
+  const Candidate& upper = candidate("skin_upper_pole");
+  EXPECT_EQ(upper.extends, "skin");
+  EXPECT_TRUE(upper.same_physics(candidate("skin")));
+  EXPECT_FALSE(upper.applicable(c));
+  EXPECT_TRUE(candidate("skin").applicable(c));
+  const Config skin = candidate("skin").with(c, 3000.0);
+  EXPECT_TRUE(upper.applicable(skin));
+  EXPECT_FALSE(candidate("skin").applicable(skin));
+  const Config both = upper.with(skin, 2000.0);
+  EXPECT_FALSE(upper.applicable(both));
+  EXPECT_FALSE(candidate("skin").applicable(both));
+  EXPECT_TRUE(both.flag("terms.skin"));
+  EXPECT_DOUBLE_EQ(both.number("skin.mu"), 3000.0);
+  EXPECT_DOUBLE_EQ(both.number("skin_upper_pole.mu"), 2000.0);
+  EXPECT_EQ(physics_of({"skin", "skin_upper_pole", "suspensory_cables"}),
+            (std::vector<std::string>{"skin", "suspensory_ligament"}));
 }
 
 namespace

@@ -123,6 +123,32 @@ TEST_P(Energies, SkinRelaxedIsTheLowerEnvelope)
   EXPECT_LT(relaxed, plain); // the relaxed energy is the lower envelope
 }
 
+TEST_P(Energies, SkinUpperPoleIsTheSkinLawOnTheUpperHalf)
+{
+  // F = s I with equal moduli: the upper-pole term is the skin's energy over
+  // the skin with Z > 0, half the cap's skin (symmetric in z). Facets cut by
+  // Z = 0 are counted by their quadrature points: O(h) in the area.
+  const double mu = 40000, lmbda = 25000, t = 0.002, s = 1.08;
+  m->set_parameter("mu_s", {mu});
+  m->set_parameter("lmbda_s", {lmbda});
+  m->set_parameter("mu_u", {mu});
+  m->set_parameter("lmbda_u", {lmbda});
+  m->set_parameter("t_s", {t});
+  set_homogeneous(*m, {s, 0, 0, 0, s, 0, 0, 0, s});
+  const double Js = s * s;
+  const double W = mu / 2 * (2 * s * s - 2 - 2 * std::log(Js)) + lmbda / 2 * (Js - 1) * (Js - 1);
+  const double expected = t * W * m->area("skin") / 2;
+  EXPECT_NEAR(m->energy("skin_upper_pole") / expected, 1.0, GetParam() == 1 ? 0.03 : 0.01);
+  EXPECT_NEAR(m->energy("skin_upper_pole") / m->energy("skin"), 0.5, GetParam() == 1 ? 0.015 : 0.005);
+  // Its own moduli: W is linear in (mu, lambda).
+  m->set_parameter("mu_u", {2 * mu});
+  m->set_parameter("lmbda_u", {2 * lmbda});
+  EXPECT_NEAR(m->energy("skin_upper_pole") / expected, 2.0, GetParam() == 1 ? 0.06 : 0.02);
+  // Compression with distinct stretches: slack like the skin (W = 0).
+  set_homogeneous(*m, {0.90, 0, 0, 0, 0.95, 0, 0, 0, 0.92});
+  EXPECT_LT(m->energy("skin_upper_pole"), 1e-9 * expected);
+}
+
 TEST_P(Energies, BaseSprings)
 {
   // u = a on the base: E = c/2 |a|^2 int (1 + (k - 1) max(0, -Z)/R) dA and

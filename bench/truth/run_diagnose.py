@@ -133,7 +133,7 @@ def read_result(out, entry, pseudo=None):
     # the physics named (a candidate that is another form of a physics names that physics)
     row["named"] = sorted(dia.get("discovered_physics", dia.get("discovered", [])))
     row["named_forms"] = sorted(dia.get("discovered", []))
-    forms = {f["physics"]: f for f in dia.get("discovered_forms", [])}
+    forms = forms_of(dia.get("discovered_forms", []))
     row["forms"] = {phys: f["term"] for phys, f in forms.items()}
     row["truth_forms"] = truth_forms(entry)
     row["verdict"] = dia.get("verdict")
@@ -192,6 +192,21 @@ def covered_effects(entry, named):
     """The hidden effects of `entry` with an equivalent q that the diagnosis
     named, in manifest order: the ones a coverage row is made for."""
     return [e for e in entry.get("effects", []) if e.get("q_equivalent") and e["candidate"] in named]
+
+
+def forms_of(discovered_forms):
+    """{physics: {"term", "parameter"}} of diagnosis.json discovered_forms.
+    A physics' form is its base term, with the regional variations that
+    extend it joined by '+' (e.g. skin+skin_upper_pole): a form of its own,
+    whose parameter is the base's, compared only with that form's
+    pseudo-true value."""
+    forms = {}
+    for f in sorted(discovered_forms, key=lambda f: bool(f.get("extends"))):
+        if f["physics"] in forms:
+            forms[f["physics"]] = {**forms[f["physics"]], "term": forms[f["physics"]]["term"] + "+" + f["term"]}
+        else:
+            forms[f["physics"]] = f
+    return forms
 
 
 def coverage_rows(entry, named, params, pseudo, forms=None):
@@ -535,6 +550,16 @@ def selftest():
     row = coverage_rows(entry, ["suspensory_ligament"], params, {"suspensory_cables": 3500.0}, forms)[0]
     if not (row["inside_reference"] is True and row["reference_kind"] == "pseudo-true" and not row["other_form"]):
         bad["other form with pseudo-true"] = row
+    # a skin named with its upper-pole variation: the joint form, the base's parameter, no reference yet
+    forms = forms_of([{"term": "skin_upper_pole", "physics": "skin", "parameter": "skin_upper_pole.mu",
+                       "extends": "skin"},
+                      {"term": "skin", "physics": "skin", "parameter": "skin.mu", "extends": ""}])
+    entry = {"effects": [{"candidate": "skin", "q_equivalent": {"parameter": "skin.mu", "value": 2500.0}}]}
+    params = {"skin.mu": {"value": 2400.0, "interval95": [2000.0, 3000.0]}}
+    row = coverage_rows(entry, ["skin"], params, {"skin": 2600.0}, forms)[0]
+    if not (row["form"] == "skin+skin_upper_pole" and row["parameter"] == "skin.mu"
+            and row["inside_reference"] is None and row["other_form"]):
+        bad["skin with its regional variation"] = row
     # forms: a cable truth named as cables, a spring truth named as cables, a false term not counted
     rows = [{"hidden": ["suspensory_ligament"], "forms": {"suspensory_ligament": "suspensory_cables"},
              "truth_forms": truth_forms({"effects": [{"candidate": "suspensory_ligament",
@@ -549,7 +574,8 @@ def selftest():
         bad["form tally"] = tally
     # every form's physics as the forms declare it: one of the physics this benchmark scores
     family = family_of_form()
-    if family.get("suspensory_cables") != "suspensory_ligament" or not set(family.values()) <= set(CANDIDATES):
+    if (family.get("suspensory_cables") != "suspensory_ligament" or family.get("skin_upper_pole") != "skin"
+            or not set(family.values()) <= set(CANDIDATES)):
         bad["family of form"] = family
     if bad:
         print(f"SELFTEST FAILED: {bad}")

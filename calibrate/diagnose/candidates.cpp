@@ -13,7 +13,7 @@ const std::vector<Candidate>& candidate_library()
   {
     std::vector<Candidate> out;
     for (const auto& c : generated::candidates())
-      out.push_back({c.term, c.parameter, c.unit, c.physics, c.typical, c.sets, c.flags, c.family});
+      out.push_back({c.term, c.parameter, c.unit, c.physics, c.typical, c.sets, c.flags, c.family, c.extends});
     return out;
   }();
   return lib;
@@ -53,18 +53,23 @@ std::vector<std::string> physics_of(const std::vector<std::string>& names)
   return out;
 }
 
+bool Candidate::in_model(const Config& c) const
+{
+  if (!TermSwitches::from(c).is_on(name))
+    return false;
+  return std::all_of(flags.begin(), flags.end(),
+                     [&c](const auto& f) { return c.flag(f.first) == f.second; });
+}
+
 bool Candidate::applicable(const Config& c) const
 {
   const TermSwitches on = TermSwitches::from(c);
+  if (!extends.empty())
+    return candidate(extends).in_model(c) && !on.is_on(name);
   for (const auto& other : candidate_library())
-    if (other.name != name && same_physics(other) && on.is_on(other.name))
+    if (other.name != name && other.extends.empty() && same_physics(other) && on.is_on(other.name))
       return false;
-  if (!on.is_on(name))
-    return true;
-  for (const auto& [key, value] : flags)
-    if (c.flag(key) != value)
-      return true;
-  return false;
+  return !in_model(c);
 }
 
 Config Candidate::with(const Config& current, double q) const

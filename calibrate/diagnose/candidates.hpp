@@ -24,14 +24,21 @@ struct Candidate
   std::vector<generated::CandidateSetting> sets;   ///< the case keys q sets, in order
   std::vector<std::pair<std::string, bool>> flags; ///< case flags set with the term on
   std::string family; ///< the physics it names: its own name, or the candidate it is another form of
+  /// The candidate it refines (a regional variation of that physics), or
+  /// empty. An extension names its base's physics and applies only where
+  /// the base term is on.
+  std::string extends;
 
   /// True if `other` is a form of the same physics (the same family).
   bool same_physics(const Candidate& other) const { return family == other.family; }
 
   /// True if the current case leaves this physics out (the term is off, or
   /// one of its flags has the other value, e.g. base.fixed = true) and has
-  /// no other form of it switched on (one form per physics).
+  /// no other form of it switched on (one form per physics). An extension:
+  /// true if its base is on and it is off.
   bool applicable(const Config& current) const;
+  /// True if the term is on with every flag at its value.
+  bool in_model(const Config& current) const;
   /// The current case with this physics switched on at q > 0.
   Config with(const Config& current, double q) const;
 };

@@ -233,7 +233,9 @@ std::string verdict_text(const Diagnosis& d, const Recording& rec, double alpha)
   {
     const Candidate& c = candidate(name);
     const std::size_t i = std::find(last.names.begin(), last.names.end(), c.parameter) - last.names.begin();
-    const std::string form = c.family == name ? "" : fmt::format(", a form of {}", c.family);
+    const std::string form = c.family == name      ? ""
+                             : !c.extends.empty() ? fmt::format(", a regional variation of {}", c.extends)
+                                                  : fmt::format(", a form of {}", c.family);
     what += fmt::format("{}{} ({}{}): {} = {:.4g} {} (95 % interval [{:.4g}, {:.4g}])",
                         what.empty() ? "" : "; ", name, c.physics, form, c.parameter, last.values[i],
                         c.unit, last.uncertainty.interval[i][0], last.uncertainty.interval[i][1]);
@@ -298,7 +300,8 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   j["discovered_forms"] = nlohmann::json::array();
   for (const auto& name : d.discovered)
     j["discovered_forms"].push_back(
-        {{"term", name}, {"physics", candidate(name).family}, {"parameter", candidate(name).parameter}});
+        {{"term", name}, {"physics", candidate(name).family}, {"parameter", candidate(name).parameter},
+         {"extends", candidate(name).extends}});
   j["undecided"] = nlohmann::json::array();
   for (const auto& u : d.undecided)
   {

@@ -72,6 +72,7 @@ struct CandidateInfo
   std::vector<CandidateSetting> sets;               // the case keys q sets, in order
   std::vector<std::pair<std::string, bool>> flags;  // case flags set with the term on
   std::string family;    // the physics it names (its own name unless another form shares it)
+  std::string extends;   // the candidate it refines (applies only where that term is on), or ""
 };
 
 /// What a fitted parameter is: sets its search bounds and the
