@@ -30,7 +30,7 @@ UPRIGHT_SET = [("standing", 0.0), ("supine", 90.0), ("all_fours", -90.0), ("lean
 MIN_RATIO_RECLINED = 4.0
 TARGET_MM = {"weak": 1.0, "strong": 3.0, "pair": 2.0}
 
-SETS = ("main", "validation", "holdout", "confirm", "effect", "refine", "tether")
+SETS = ("main", "validation", "holdout", "confirm", "effect", "refine", "tether", "skinvar")
 N_CONTROLS = 14
 SHAPES_PER_EFFECT = 3
 # candidate -> truth effect; tether shapes 1, 2 are springs, shape 3 cables
@@ -88,6 +88,8 @@ def recordings(which="main"):
         return refinement_rule_recordings()
     if which == "tether":
         return tether_form_recordings()
+    if which == "skinvar":
+        return skin_variation_recordings()
     out = []
     add = _adder(out, 0)
 
@@ -203,6 +205,41 @@ def tether_form_recordings():
     for cand, effect in sorted(BY_CANDIDATE.items()):
         if cand != "suspensory_ligament":
             add(f"teth_{cand}_weak_1", "weak", [(effect, _pattern(effect, [59, len(cand), ord(cand[0])], 2))])
+    return out
+
+
+SKINVAR_OFFSET = 230  # material/posture cycle and seeds 1930+: none shared with the other sets
+
+
+def skin_variation_recordings():
+    """2 controls, eight new skins (four weak, four strong) and four new
+    skin + tether pairs (two spring tethers, two cables). The skins'
+    stiffness gradients are drawn over the whole range, with the sign of
+    the vertical one set: skins 1-4 and pairs 1-2 stiffer on the upper pole
+    (a_z > 0), the others below. These are the recordings on which the skin's regional
+    variation (skin_upper_pole) can change a verdict, for better (a skin
+    named alone) or worse (a real tether taken for the skin's variation).
+    Defined on 2026-12-06 with its test written in docs/DIAGNOSE.md, before
+    any recording of it was generated."""
+    out = []
+    add = _adder(out, SKINVAR_OFFSET)
+    for i in range(1, 3):
+        add(f"skv_control_{i:02d}", "control", [])
+    skin = BY_CANDIDATE["skin"]
+
+    def skin_pattern(seed, upper):
+        p = EFFECTS[skin].draw_pattern(np.random.default_rng(seed))
+        return {**p, "a_z": abs(p["a_z"]) if upper else -abs(p["a_z"])}
+
+    for k in range(1, 9):
+        pattern = skin_pattern([61, 3, k], k <= 4)
+        add(f"skv_skin_{'weak' if k % 2 else 'strong'}_{k}", "weak" if k % 2 else "strong", [(skin, pattern)])
+    tethers = EFFECTS[BY_CANDIDATE["suspensory_ligament"]]
+    for k in range(1, 5):
+        effects = [(skin, skin_pattern([61, 5, k], k <= 2)),
+                   (tethers.NAME, tethers.draw_pattern(np.random.default_rng([61, 7, k]),
+                                                       "cables" if k % 2 == 0 else "springs"))]
+        add(f"skv_pair_skin__suspensory_ligament_{k}", "pair", effects)
     return out
 
 

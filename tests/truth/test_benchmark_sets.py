@@ -5,8 +5,10 @@ main 42 (14 controls), validation 12 (2 controls), holdout and confirm 12
 each (4 controls, two weak shapes per candidate), effect 16 (4 controls,
 three weak shapes per candidate), refine 15 (4 controls, eight weak beds,
 one weak shape of each other candidate), tether 15 (4 controls, eight weak
-tethers, four of them cables, one weak shape of each other candidate); every
-lambda/mu of each set is in [2, 10].
+tethers, four of them cables, one weak shape of each other candidate),
+skinvar 14 (2 controls, eight skins, four of them stiffer on the upper
+pole, four skin + tether pairs, two of them cables); every lambda/mu of
+each set is in [2, 10].
 
 Run: /usr/bin/python3 tests/truth/test_benchmark_sets.py SOURCE_DIR
 """
@@ -18,7 +20,7 @@ sys.path.insert(0, str(Path(sys.argv[1]) / "bench" / "truth"))
 import benchmark_set  # noqa: E402
 
 SIZES = {"main": (42, 14), "validation": (12, 2), "holdout": (12, 4), "confirm": (12, 4), "effect": (16, 4),
-         "refine": (15, 4), "tether": (15, 4)}
+         "refine": (15, 4), "tether": (15, 4), "skinvar": (14, 2)}
 
 
 def main():
@@ -47,6 +49,11 @@ def main():
     others = Counter(r["name"].rsplit("_weak_", 1)[0] for r in tether if r["strength_class"] == "weak")
     assert others == {"teth_suspensory_ligament": 8, "teth_base_springs": 1, "teth_gland_core": 1,
                       "teth_skin": 1}, others
+    skinvar = benchmark_set.recordings("skinvar")
+    skins = [e[1] for r in skinvar for e in r["effects"] if e[0] == "fibre_net_skin"]
+    assert len(skins) == 12 and sum(p["a_z"] > 0 for p in skins) == 6, skins
+    variants = Counter(e[1]["variant"] for r in skinvar for e in r["effects"] if e[0] == "smooth_tethers")
+    assert variants == {"springs": 2, "cables": 2}, variants
     shared = [n for n, k in names.items() if k > 1] + [s for s, k in seeds.items() if k > 1]
     assert not shared, f"shared between sets: {shared}"
     print("benchmark sets: OK")
