@@ -402,6 +402,10 @@ TEST(Candidates, AnExtensionAppliesOnlyOnTopOfItsBase)
   EXPECT_DOUBLE_EQ(both.number("skin_upper_pole.mu"), 2000.0);
   EXPECT_EQ(physics_of({"skin", "skin_upper_pole", "suspensory_cables"}),
             (std::vector<std::string>{"skin", "suspensory_ligament"}));
+  // It does not use up a round of discovery (--max-rounds counts physics).
+  EXPECT_EQ(physics_found({"skin", "skin_upper_pole"}), 1);
+  EXPECT_EQ(physics_found({"skin", "skin_upper_pole", "suspensory_cables"}), 2);
+  EXPECT_EQ(physics_found({}), 0);
 }
 
 namespace

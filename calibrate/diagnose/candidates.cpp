@@ -53,6 +53,12 @@ std::vector<std::string> physics_of(const std::vector<std::string>& names)
   return out;
 }
 
+int physics_found(const std::vector<std::string>& names)
+{
+  return static_cast<int>(
+      std::count_if(names.begin(), names.end(), [](const auto& n) { return candidate(n).extends.empty(); }));
+}
+
 bool Candidate::in_model(const Config& c) const
 {
   if (!TermSwitches::from(c).is_on(name))

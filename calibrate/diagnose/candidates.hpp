@@ -50,6 +50,9 @@ const Candidate& candidate(const std::string& name);
 /// The physics the candidates `names` name when found (their families),
 /// each once, in the order of `names`.
 std::vector<std::string> physics_of(const std::vector<std::string>& names);
+/// How many physics the terms `names` add: those that extend another
+/// (a regional variation of a found physics) add none.
+int physics_found(const std::vector<std::string>& names);
 /// The candidates' names, comma separated (for help texts and messages).
 std::string candidate_names();
 /// "name: parameter [unit]; ..." of every candidate (help texts).

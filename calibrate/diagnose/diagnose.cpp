@@ -447,9 +447,11 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   d.refinement_allowance = o.refinement_allowance;
   Search s(rec, current, o, comm);
   fit_current_model(s, d);
-  for (int round = 0; round < o.max_rounds; ++round)
-    if (!discovery_round(s, d))
-      break; // step 8: nothing (more) is significant
+  // Step 8: rounds until nothing (more) is significant or o.max_rounds
+  // physics are found (an extension does not count).
+  bool accepted = true;
+  while (accepted && physics_found(d.discovered) < o.max_rounds)
+    accepted = discovery_round(s, d);
   d.final_fit = s.state;
   d.se_statistical = s.state.uncertainty.se_log;
   // Step 9: the numerical uncertainty of the fitted values.

@@ -38,7 +38,7 @@ struct DiagnoseOptions
   std::string fit = "mu";              ///< current-model parameters refitted (--fit names)
   std::vector<std::string> candidates; ///< library subset to test ("": every applicable one)
   double alpha = 1e-3;                 ///< false-discovery level of one round (all candidates)
-  int max_rounds = 2;
+  int max_rounds = 2; ///< physics found at most (an extension does not count)
   /// The diagnosis discretisation of the parametric cap: element order and
   /// mesh size the fits are made on (0: the case's). `breastsim diagnose`
   /// defaults to P2 at 12 mm (docs/DIAGNOSE.md); the written case keeps the

@@ -80,7 +80,7 @@ Command add_diagnose_command(CLI::App& root)
                                                      + calibration::candidate_names()
                                                      + "; default: every candidate whose term is off)");
   app->add_option("--alpha", o->d.alpha, "false-discovery level of a round")->capture_default_str();
-  app->add_option("--max-rounds", o->d.max_rounds, "rounds of discovery")->capture_default_str();
+  app->add_option("--max-rounds", o->d.max_rounds, "physics found at most: rounds of discovery, not counting a round that finds a regional variation of a found physics (skin_upper_pole)")->capture_default_str();
   app->add_option("--refits", o->d.refits, "significant candidates refitted per round (the largest "
                                            "likelihood ratio wins)")->capture_default_str();
   app->add_option("--min-score-fraction", o->d.min_score_fraction,
