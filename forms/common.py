@@ -11,7 +11,7 @@ import os
 
 from ufl import (Coefficient, Constant, FacetNormal, FunctionSpace, Identity, Measure, Mesh,
                  SpatialCoordinate, TestFunction, TrialFunction, VectorElement,
-                 det, dot, grad, inv, ln, outer, sqrt, tetrahedron, tr,
+                 conditional, det, dot, grad, gt, inv, ln, outer, sqrt, tetrahedron, tr,
                  variable)
 
 DEGREE = int(os.environ.get("BREASTSIM_DEGREE", "1"))
@@ -46,6 +46,7 @@ v = TestFunction(V)
 du = TrialFunction(V)
 
 X = SpatialCoordinate(domain)
+upper_pole = conditional(gt(X[2], 0), 1.0, 0.0)   # [Z > 0], the region of the upper-pole terms
 N = FacetNormal(domain)          # reference outward normal
 I = Identity(3)
 F = variable(I + grad(u))        # deformation gradient

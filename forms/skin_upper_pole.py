@@ -11,9 +11,8 @@ the same region (e.g. suspensory_cables on the upper-pole skin) is then
 named only if it explains the residual better than this regional variation
 of the skin already found (docs/DIAGNOSE.md).
 """
-from common import Constant, X, candidate, domain, ds, param
+from common import Constant, candidate, domain, ds, param, upper_pole
 from skin import skin_density, skin_tension_only, t_s
-from ufl import conditional, gt
 
 NAME = "skin_upper_pole"
 DEFAULT_ON = False
@@ -30,5 +29,4 @@ CANDIDATE = candidate("skin_upper_pole.mu", "Pa", 2e4,
                       "the skin stiffer on the upper pole (Z > 0) than elsewhere",
                       sets={"mu_u": "q", "lmbda_u": "keep_ratio"}, extends="skin")
 
-upper_pole = conditional(gt(X[2], 0), 1.0, 0.0)   # [Z > 0]
 ENERGY = t_s * upper_pole * skin_density(mu_u, lmbda_u, skin_tension_only) * ds("skin", "surface")

@@ -12,8 +12,8 @@ zero-length spring form, which resists every displacement). k_c = 0
 reproduces the model without the cables. The energy is C1 (its Hessian
 jumps where a cable goes taut); the rest length |X - A| >= d_a > 0.
 """
-from common import Constant, X, candidate, domain, dot, ds, param, sqrt, u
-from ufl import as_vector, conditional, gt, max_value
+from common import Constant, X, candidate, domain, dot, ds, param, sqrt, u, upper_pole
+from ufl import as_vector, max_value
 
 NAME = "suspensory_cables"
 DEFAULT_ON = False
@@ -32,7 +32,6 @@ CANDIDATE = candidate("cables.k", "Pa/m", 2e3,
                       "skin up to the chest wall",
                       sets={"k_c": "q"}, family="suspensory_ligament")
 
-upper_pole = conditional(gt(X[2], 0), 1.0, 0.0)
 anchor = as_vector((X[0], 0.0, X[2] + d_a))
 rest_length = sqrt(dot(X - anchor, X - anchor))               # |X - A|
 length = sqrt(dot(X + u - anchor, X + u - anchor))            # |x - A|

@@ -6,8 +6,7 @@ toward its neutral position by a bed of springs,
 k_l [Pa/m] per unit reference skin area (SPEC.md frame: Z > 0 is the upper
 pole when standing). k_l = 0 reproduces the model without ligaments.
 """
-from common import Constant, X, candidate, domain, dot, ds, u, param
-from ufl import conditional, gt
+from common import Constant, candidate, domain, dot, ds, u, param, upper_pole
 
 NAME = "suspensory_ligament"
 DEFAULT_ON = False
@@ -22,5 +21,4 @@ CANDIDATE = candidate("ligament.k", "Pa/m", 2e3,
                       "neutral position",
                       sets={"k_l": "q"})
 
-upper_pole = conditional(gt(X[2], 0), 1.0, 0.0)
 ENERGY = k_l / 2 * upper_pole * dot(u, u) * ds("skin", "surface_quad")

@@ -141,12 +141,14 @@ TEST(LevenbergMarquardt, GaussNewtonStepSolvesTheDampedNormalEquations)
   for (double lambda : {0.0, 0.5})
   {
     const auto dy = gauss_newton_step(A, g, lambda);
-    ASSERT_EQ(dy.size(), 2u);
-    EXPECT_NEAR((4 + 4 * lambda) * dy[0] + dy[1], -1, 1e-12) << lambda;
-    EXPECT_NEAR(dy[0] + (2 + 2 * lambda) * dy[1], -3, 1e-12) << lambda;
+    ASSERT_TRUE(dy && dy->size() == 2u) << lambda;
+    EXPECT_NEAR((4 + 4 * lambda) * (*dy)[0] + (*dy)[1], -1, 1e-12) << lambda;
+    EXPECT_NEAR((*dy)[0] + (2 + 2 * lambda) * (*dy)[1], -3, 1e-12) << lambda;
   }
-  EXPECT_NEAR(gauss_newton_step(A, g)[0], 1.0 / 7, 1e-12); // -A^-1 g = (1/7, -11/7)
-  EXPECT_TRUE(gauss_newton_step({{1, 1}, {1, 1}}, {1, 1}).empty()) << "a singular A has no step";
+  EXPECT_NEAR(gauss_newton_step(A, g).value()[0], 1.0 / 7, 1e-12); // -A^-1 g = (1/7, -11/7)
+  EXPECT_FALSE(gauss_newton_step({{1, 1}, {1, 1}}, {1, 1})) << "a singular A has no step";
+  const auto none = gauss_newton_step({}, {});
+  EXPECT_TRUE(none && none->empty()) << "no parameters: the empty step, not a singular matrix";
 }
 
 namespace

@@ -141,11 +141,13 @@ FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::v
     std::vector<double> g;
     normal_equations(from.J, best.r, n, A, g);
     const auto delta = gauss_newton_step(A, g); // -(J^T J)^-1 J^T r
-    y = step_within_bounds(log_values(best), delta, frees);
+    if (!delta)
+      break; // singular: no step
+    y = step_within_bounds(log_values(best), *delta, frees);
     double largest = 0;
-    for (double d : delta)
+    for (double d : *delta)
       largest = std::max(largest, std::abs(d));
-    if (delta.empty() || (k > 0 && largest < step_tol))
+    if (k > 0 && largest < step_tol)
       break; // the first step is always tried: it measures how far the optimum moved
     const Config c = config_at(base, frees, y);
     FitState next = make_state(c, frees, y, from.J, ev(c), best.evaluations + 1);

@@ -29,12 +29,13 @@ bool damped_step(const ResidualFunction& f, const Matrix& A, const std::vector<d
   const std::size_t n = g.size();
   for (int attempt = 0; attempt < max_trials; ++attempt)
   {
-    const auto dy = gauss_newton_step(A, g, lambda);
-    if (dy.empty() && n > 0) // singular
+    const auto step = gauss_newton_step(A, g, lambda);
+    if (!step) // singular
     {
       lambda *= 4;
       continue;
     }
+    const std::vector<double>& dy = *step;
     auto y1 = res.y;
     max_step = 0;
     for (std::size_t a = 0; a < n; ++a)
@@ -68,9 +69,10 @@ double gauss_newton_decrease(const Matrix& A, const std::vector<double>& g, cons
                              const std::vector<double>& lo, const std::vector<double>& hi)
 {
   const std::size_t n = g.size();
-  auto dy = gauss_newton_step(A, g);
-  if (dy.empty())
+  const auto step = gauss_newton_step(A, g);
+  if (!step)
     return 0;
+  auto dy = *step;
   for (std::size_t a = 0; a < n; ++a)
     dy[a] = std::clamp(y[a] + dy[a], lo[a], hi[a]) - y[a];
   double change = 0;
@@ -107,7 +109,8 @@ bool converged_after_short_step(const ResidualFunction& f, const std::vector<dou
 }
 } // namespace
 
-std::vector<double> gauss_newton_step(const Matrix& A, const std::vector<double>& g, double lambda)
+std::optional<std::vector<double>> gauss_newton_step(const Matrix& A, const std::vector<double>& g,
+                                                     double lambda)
 {
   const std::size_t n = g.size();
   Matrix M = A;
@@ -118,7 +121,7 @@ std::vector<double> gauss_newton_step(const Matrix& A, const std::vector<double>
     minus_g[a] = -g[a];
   }
   if (!solve_dense(std::move(M), std::move(minus_g), dy))
-    dy.clear();
+    return std::nullopt;
   return dy;
 }
 

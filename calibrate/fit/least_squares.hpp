@@ -8,6 +8,7 @@
 #include "case_groups.hpp"
 #include "objective.hpp"
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,8 +62,9 @@ void normal_equations(const Matrix& J, const std::vector<double>& r, std::size_t
 
 /// The damped Gauss-Newton step dy of the normal equations A = J^T J,
 /// g = J^T r:  (A + lambda diag(A)) dy = -g  (lambda = 0: the Gauss-Newton
-/// step). Empty if the matrix is singular to working precision.
-std::vector<double> gauss_newton_step(const Matrix& A, const std::vector<double>& g, double lambda = 0);
+/// step). None if the matrix is singular to working precision (n = 0: the
+/// empty step).
+std::optional<std::vector<double>> gauss_newton_step(const Matrix& A, const std::vector<double>& g, double lambda = 0);
 
 /// Solve the small dense system A x = b (Gaussian elimination with partial
 /// pivoting); false if A is singular to working precision.
