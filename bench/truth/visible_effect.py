@@ -16,7 +16,7 @@ effect over the recordings named and missed.
     python3 bench/truth/visible_effect.py --selftest
 
 RUN_DIR holds run_diagnose.py's NAME/diagnosis/diagnosis.json. Only the
-standard library.
+standard library (and run_diagnose.py's reader of pseudo_true.json).
 """
 import argparse
 import json
@@ -24,6 +24,8 @@ import statistics
 import sys
 import tempfile
 from pathlib import Path
+
+from run_diagnose import pseudo_true_recordings
 
 
 def term_effect(dia, physics):
@@ -42,8 +44,7 @@ def rows_of_run(manifest_path, run_dir):
     effect and a diagnosis."""
     manifest_path, run_dir = Path(manifest_path), Path(run_dir)
     recordings = json.loads(manifest_path.read_text())["recordings"]
-    pt_path = manifest_path.parent / "pseudo_true.json"
-    pseudo = json.loads(pt_path.read_text())["recordings"] if pt_path.exists() else {}
+    pseudo = pseudo_true_recordings(manifest_path.parent)
     rows = []
     for name, entry in sorted(recordings.items()):
         dj = run_dir / name / "diagnosis" / "diagnosis.json"
@@ -51,10 +52,10 @@ def rows_of_run(manifest_path, run_dir):
             continue
         physics = entry["hidden"][0]
         truth = pseudo.get(name, {}).get("candidates", {}).get(physics, {}).get("effect_rms_mm")
-        dia = json.loads(dj.read_text())
-        seen = term_effect(dia, physics)
         if truth is None:
             continue
+        dia = json.loads(dj.read_text())
+        seen = term_effect(dia, physics)
         named = sorted(dia.get("discovered_physics", dia.get("discovered", []))) == [physics]
         rows.append({"name": name, "physics": physics, "class": entry["strength_class"],
                      "truth_mm": truth, "term_mm": seen[0] if seen else 0.0,
