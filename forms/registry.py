@@ -15,6 +15,7 @@ TERMS = [
     "suspensory_ligament",
     "suspensory_cables",
     "gland_core",
+    "gland_lobe",
     "tissue_suture",
     "chest_wall",
 ]

@@ -280,7 +280,7 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
 {
   // The CANDIDATE of each term in forms/ (skin.py, skin_upper_pole.py,
   // base_springs.py, suspensory_ligament.py, suspensory_cables.py,
-  // gland_core.py), in the order of forms/registry.py.
+  // gland_core.py, gland_lobe.py), in the order of forms/registry.py.
   struct Declared
   {
     std::string name, parameter, unit, first_key;
@@ -293,7 +293,8 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
       {"base_springs", "base.compliance", "m/Pa", "base.c", 5e-6, "base_springs", ""},
       {"suspensory_ligament", "ligament.k", "Pa/m", "ligament.k", 2e3, "suspensory_ligament", ""},
       {"suspensory_cables", "cables.k", "Pa/m", "cables.k", 2e3, "suspensory_ligament", ""},
-      {"gland_core", "gland.excess", "1", "gland.excess", 2.0, "gland_core", ""}};
+      {"gland_core", "gland.excess", "1", "gland.excess", 2.0, "gland_core", ""},
+      {"gland_lobe", "gland.lobe_excess", "1", "gland.lobe_excess", 2.0, "gland_core", ""}};
   const auto& lib = candidate_library();
   ASSERT_EQ(lib.size(), declared.size());
   for (std::size_t i = 0; i < lib.size(); ++i)
@@ -309,7 +310,8 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
     EXPECT_FALSE(lib[i].physics.empty());
   }
   EXPECT_EQ(candidate_names(),
-            "skin, skin_upper_pole, base_springs, suspensory_ligament, suspensory_cables, gland_core");
+            "skin, skin_upper_pole, base_springs, suspensory_ligament, suspensory_cables, gland_core, "
+            "gland_lobe");
   // Every key a candidate sets is a parameter of its own term, and every
   // flag a case key; the candidate is a registered term.
   for (const auto& c : lib)
@@ -380,6 +382,13 @@ TEST(Candidates, OneFormPerPhysics)
             (std::vector<std::string>{"skin", "suspensory_ligament"}));
   EXPECT_EQ(physics_of({"suspensory_cables", "suspensory_ligament"}),
             (std::vector<std::string>{"suspensory_ligament"}));
+  // The gland as a full-depth core or as a buried lobe: one physics.
+  const Config lobe = candidate("gland_lobe").with(c, 1.5);
+  EXPECT_DOUBLE_EQ(lobe.number("gland.lobe_excess"), 1.5);
+  EXPECT_FALSE(candidate("gland_core").applicable(lobe));
+  EXPECT_FALSE(candidate("gland_lobe").applicable(candidate("gland_core").with(c, 1.5)));
+  EXPECT_TRUE(candidate("gland_lobe").same_physics(candidate("gland_core")));
+  EXPECT_EQ(physics_of({"gland_lobe", "skin"}), (std::vector<std::string>{"gland_core", "skin"}));
 }
 
 TEST(Candidates, AnExtensionAppliesOnlyOnTopOfItsBase)

@@ -240,5 +240,33 @@ TEST_P(Energies, GlandCore)
   EXPECT_NEAR(m->energy("gland_core") / (mg * W * V), 1.0, 0.05);
 }
 
+TEST_P(Energies, GlandLobe)
+{
+  // Homogeneous F0: E = m_l W(F0) int w dV with w = max(1 - rho^2, 0)^2 on
+  // the ellipsoid rho < 1 (radius a, half-depth b, centre height y = b: it
+  // lies inside the cap and touches the base at one point). Over the half
+  // ellipsoid X > 0, int w dV = 1/2 a^2 b 4 pi int_0^1 (1 - s^2)^2 s^2 ds
+  // = 16 pi a^2 b / 105. Cells are integrated at their quadrature points.
+  const std::array<double, 9> F0 = {1.05, 0.02, 0.0, 0.0, 0.97, 0.01, 0.0, 0.0, 1.02};
+  set_homogeneous(*m, F0);
+  const double mu = 500, lmbda = 6000, ml = 3, a = 0.035, b = 0.02;
+  m->set_parameter("mu", {mu});
+  m->set_parameter("lmbda", {lmbda});
+  m->set_parameter("m_l", {ml});
+  m->set_parameter("y_l", {b});
+  m->set_parameter("a_l", {a});
+  m->set_parameter("b_l", {b});
+  double trFFt = 0;
+  for (double f : F0)
+    trFFt += f * f;
+  const double J = det3(F0);
+  const double W = mu / 2 * (trFFt - 3 - 2 * std::log(J)) + lmbda / 2 * (J - 1) * (J - 1);
+  const double weight_volume = 16 * M_PI * a * a * b / 105;
+  EXPECT_NEAR(m->energy("gland_lobe") / (ml * W * weight_volume), 1.0, 0.05);
+  // Lifted out of the cap the lobe holds no tissue: no energy.
+  m->set_parameter("y_l", {1.0});
+  EXPECT_EQ(m->energy("gland_lobe"), 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Orders, Energies, ::testing::Values(1, 2),
                          [](const auto& info) { return "P" + std::to_string(info.param); });

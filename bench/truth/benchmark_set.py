@@ -30,7 +30,7 @@ UPRIGHT_SET = [("standing", 0.0), ("supine", 90.0), ("all_fours", -90.0), ("lean
 MIN_RATIO_RECLINED = 4.0
 TARGET_MM = {"weak": 1.0, "strong": 3.0, "pair": 2.0}
 
-SETS = ("main", "validation", "holdout", "confirm", "effect", "refine", "tether", "skinvar")
+SETS = ("main", "validation", "holdout", "confirm", "effect", "refine", "tether", "skinvar", "glandform")
 N_CONTROLS = 14
 SHAPES_PER_EFFECT = 3
 # candidate -> truth effect; tether shapes 1, 2 are springs, shape 3 cables
@@ -75,7 +75,10 @@ def recordings(which="main"):
     measure once more, where it can change a verdict) or the refinement-rule
     set ("refine", 15: weak beds mostly, to test the refinement check's
     allowance) or the tether-form set ("tether", 15: weak tethers mostly,
-    half of them cables, to test the ligaments' cable form out of sample)."""
+    half of them cables, to test the ligaments' cable form out of sample)
+    or the skin-variation set ("skinvar", 14) or the gland-form set
+    ("glandform", 14: weak glands mostly, to test the gland's lobe form out
+    of sample)."""
     if which == "validation":
         return validation_recordings()
     if which == "holdout":
@@ -90,6 +93,8 @@ def recordings(which="main"):
         return tether_form_recordings()
     if which == "skinvar":
         return skin_variation_recordings()
+    if which == "glandform":
+        return gland_form_recordings()
     out = []
     add = _adder(out, 0)
 
@@ -240,6 +245,28 @@ def skin_variation_recordings():
                    (tethers.NAME, tethers.draw_pattern(np.random.default_rng([61, 7, k]),
                                                        "cables" if k % 2 == 0 else "springs"))]
         add(f"skv_pair_skin__suspensory_ligament_{k}", "pair", effects)
+    return out
+
+
+GLANDFORM_OFFSET = 260  # material/posture cycle and seeds 1960+: none shared with the other sets
+
+
+def gland_form_recordings():
+    """3 controls, eight new weak glands and one new weak shape of each other
+    candidate: the recordings on which the gland's lobe form (gland_lobe, a
+    buried body on the nipple axis) can change a verdict against the
+    full-depth core (gland_core). Defined on 2026-12-06 with its test written
+    in docs/DIAGNOSE.md, before any recording of it was generated."""
+    out = []
+    add = _adder(out, GLANDFORM_OFFSET)
+    for i in range(1, 4):
+        add(f"glf_control_{i:02d}", "control", [])
+    gland = BY_CANDIDATE["gland_core"]
+    for k in range(1, 9):
+        add(f"glf_gland_core_weak_{k}", "weak", [(gland, _pattern(gland, [67, 11, k], 1))])
+    for cand, effect in sorted(BY_CANDIDATE.items()):
+        if cand != "gland_core":
+            add(f"glf_{cand}_weak_1", "weak", [(effect, _pattern(effect, [67, len(cand), ord(cand[0])], 2))])
     return out
 
 

@@ -7,7 +7,9 @@ three weak shapes per candidate), refine 15 (4 controls, eight weak beds,
 one weak shape of each other candidate), tether 15 (4 controls, eight weak
 tethers, four of them cables, one weak shape of each other candidate),
 skinvar 14 (2 controls, eight skins, four of them stiffer on the upper
-pole, four skin + tether pairs, two of them cables); every lambda/mu of
+pole, four skin + tether pairs, two of them cables), glandform 14 (3
+controls, eight weak glands, one weak shape of each other candidate);
+every lambda/mu of
 each set is in [2, 10].
 
 Run: /usr/bin/python3 tests/truth/test_benchmark_sets.py SOURCE_DIR
@@ -20,7 +22,8 @@ sys.path.insert(0, str(Path(sys.argv[1]) / "bench" / "truth"))
 import benchmark_set  # noqa: E402
 
 SIZES = {"main": (42, 14), "validation": (12, 2), "holdout": (12, 4), "confirm": (12, 4), "effect": (16, 4),
-         "refine": (15, 4), "tether": (15, 4), "skinvar": (14, 2)}
+         "refine": (15, 4), "tether": (15, 4), "skinvar": (14, 2),
+         "glandform": (14, 3)}
 
 
 def main():
@@ -54,6 +57,10 @@ def main():
     assert len(skins) == 12 and sum(p["a_z"] > 0 for p in skins) == 6, skins
     variants = Counter(e[1]["variant"] for r in skinvar for e in r["effects"] if e[0] == "smooth_tethers")
     assert variants == {"springs": 2, "cables": 2}, variants
+    glands = Counter(r["name"].rsplit("_weak_", 1)[0] for r in benchmark_set.recordings("glandform")
+                     if r["strength_class"] == "weak")
+    assert glands == {"glf_gland_core": 8, "glf_base_springs": 1, "glf_skin": 1,
+                      "glf_suspensory_ligament": 1}, glands
     shared = [n for n, k in names.items() if k > 1] + [s for s, k in seeds.items() if k > 1]
     assert not shared, f"shared between sets: {shared}"
     print("benchmark sets: OK")
