@@ -10,6 +10,8 @@ candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
      E = q/2 e^2 pi Rs / 2 (H^3 / 3 + d_a^2 H); 0 for u = -e (X - A);
    - sharp core, u = e X (F = (1 + e) I): E = q W((1 + e) I) V_core,
      V_core the half cap's volume inside x^2 + z^2 < r_g^2 (gland_ellipsoid.core_volume);
+   - buried lobe (another form, OTHER_FORMS), u = e X: E = q W((1 + e) I) int w dV,
+     int w dV = 16 pi a_l^2 b_l / 105 over the half ellipsoid (inside the cap);
    - the truth's chest wall, u = (0, -d, 0): the skin below height d is
      d - Y behind the chest; a band dY of the half cap's skin has the area
      pi Rs dY, so E = K pi Rs d^3 / 6; in front of the chest (u_y > 0) 0;
@@ -37,7 +39,7 @@ sys.path.insert(0, str(Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 import numpy as np  # noqa: E402
 
 from forms_truth import chest_contact, tissue  # noqa: E402
-from forms_truth.candidate_forms import CANDIDATE_FORMS, D_A, OTHER_FORMS, R_G, T_S  # noqa: E402
+from forms_truth.candidate_forms import CANDIDATE_FORMS, D_A, LOBE, OTHER_FORMS, R_G, T_S  # noqa: E402
 from forms_truth.gland_ellipsoid import core_volume  # noqa: E402
 from pseudo_true import Fitter  # noqa: E402
 
@@ -90,6 +92,13 @@ def closed_forms(fitter):
     w = 500.0 / 2 * (3 * (1 + e) ** 2 - 3 - 2 * math.log((1 + e) ** 3)) + 2000.0 / 2 * ((1 + e) ** 3 - 1) ** 2
     # the cylinder cuts the cells: quadrature of the indicator (0.8 % at 14 mm)
     check("sharp core, uniform dilation", energy(ctx, core, lambda x: e * x), 0.8 * w * core_volume(R, H, R_G), 0.02)
+
+    lobe = OTHER_FORMS["gland_lobe"].Term(ctx, {}, tis)
+    lobe.set_strength(0.8)
+    _, a_l, b_l = LOBE
+    # int over the half ellipsoid of (1 - rho^2)^2 = 2 pi a^2 b int_0^1 (1 - s^2)^2 s^2 ds
+    check("buried lobe, uniform dilation", energy(ctx, lobe, lambda x: e * x),
+          0.8 * w * 16 * math.pi * a_l ** 2 * b_l / 105, 0.01)
 
     wall = chest_contact.Term(ctx, 2e7)
     d = 0.6 * H

@@ -9,6 +9,10 @@ recording.
                           (replaces the fixed base)
     gland_core:           E = int_B q chi(X) W(F) dV,  chi = 1 where
                           X^2 + Z^2 < r_g^2 (r_g = 30 mm), W eq. (5)
+    gland_lobe:           E = int_B q w(X) W(F) dV,  w = max(1 - rho^2, 0)^2,
+                          rho^2 = (X^2 + Z^2)/a_l^2 + (Y - y_l)^2/b_l^2
+                          (y_l = 20, a_l = 35, b_l = 20 mm; the same physics
+                          as a lobe buried on the nipple axis)
     suspensory_ligament:  E = int_skin q/2 w(X) |u|^2 dA,  w = 1 where Z > 0
     suspensory_cables:    E = int_skin q/2 w(X) max(|x - A| - |X - A|, 0)^2 dA,
                           A = (X_x, 0, X_z + d_a), d_a = 20 mm, x = X + u
@@ -25,6 +29,7 @@ import ufl
 R_G = 0.03  # m, gland.radius of cases/default.toml
 D_A = 0.02  # m, cables.anchor_rise of cases/default.toml
 T_S = 0.0015  # m, skin.thickness of cases/default.toml
+LOBE = (0.02, 0.035, 0.02)  # m, gland.lobe_height, gland.lobe_radius, gland.lobe_half_depth
 DISC_MIN = 1e-10  # (l1^2 - l2^2)^2 below this: the plain law (forms/skin.py)
 
 
@@ -76,6 +81,21 @@ class SharpCore(_Form):
         X = ctx.X
         chi = ufl.conditional(ufl.lt(X[0] ** 2 + X[2] ** 2, R_G ** 2), 1.0, 0.0)
         self.energy = self.q * chi * tissue.density * ctx.dx                 # q chi W(F)
+
+
+class BuriedLobe(_Form):
+    NAME = "candidate:gland_lobe"
+    CANDIDATE = "gland_lobe"
+    PHYSICS = "gland_core"
+    PARAMETER = "gland.lobe_excess"
+
+    def __init__(self, ctx, pattern=None, tissue=None):
+        super().__init__(ctx, self.PARAMETER)
+        X = ctx.X
+        y_l, a_l, b_l = LOBE
+        rho2 = (X[0] ** 2 + X[2] ** 2) / a_l ** 2 + (X[1] - y_l) ** 2 / b_l ** 2
+        w = ufl.max_value(1.0 - rho2, 0.0) ** 2
+        self.energy = self.q * w * tissue.density * ctx.dx                   # q w W(F)
 
 
 class UpperPoleSprings(_Form):
@@ -151,4 +171,4 @@ def _module(cls):
 CANDIDATE_FORMS = {c.CANDIDATE: _module(c) for c in (UniformBed, SharpCore, UpperPoleSprings,
                                                          TensionFieldSkin)}
 # Other forms of a candidate's physics (pseudo_true.py --form PHYSICS=FORM).
-OTHER_FORMS = {c.CANDIDATE: _module(c) for c in (UpperPoleCables,)}
+OTHER_FORMS = {c.CANDIDATE: _module(c) for c in (UpperPoleCables, BuriedLobe)}
