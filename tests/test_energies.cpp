@@ -31,6 +31,16 @@ double det3(const std::array<double, 9>& F)
          + F[2] * (F[3] * F[7] - F[4] * F[6]);
 }
 
+/// eq. (5): W = mu/2 (tr F F^T - 3 - 2 ln J) + lambda/2 (J - 1)^2
+double neo_hooke_density(const std::array<double, 9>& F, double mu, double lmbda)
+{
+  double trFFt = 0;
+  for (double f : F)
+    trFFt += f * f;
+  const double J = det3(F);
+  return mu / 2 * (trFFt - 3 - 2 * std::log(J)) + lmbda / 2 * (J - 1) * (J - 1);
+}
+
 class Energies : public ::testing::TestWithParam<int>
 {
 protected:
@@ -51,12 +61,8 @@ TEST_P(Energies, TissueNeoHookean)
   const double mu = 1300, lmbda = 7000;
   m->set_parameter("mu", {mu});
   m->set_parameter("lmbda", {lmbda});
-  double trFFt = 0;
-  for (double f : F0)
-    trFFt += f * f;
   const double J = det3(F0);
-  // eq. (5): W = mu/2 (tr F F^T - 3 - 2 ln J) + lambda/2 (J - 1)^2, times the volume.
-  const double W = mu / 2 * (trFFt - 3 - 2 * std::log(J)) + lmbda / 2 * (J - 1) * (J - 1);
+  const double W = neo_hooke_density(F0, mu, lmbda);
   const double V = m->volume() / J; // reference volume of the mesh
   EXPECT_NEAR(m->energy("tissue") / (W * V), 1.0, 1e-10);
 }
@@ -229,11 +235,7 @@ TEST_P(Energies, GlandCore)
   m->set_parameter("lmbda", {lmbda});
   m->set_parameter("m_g", {mg});
   m->set_parameter("r_g", {r});
-  double trFFt = 0;
-  for (double f : F0)
-    trFFt += f * f;
-  const double J = det3(F0);
-  const double W = mu / 2 * (trFFt - 3 - 2 * std::log(J)) + lmbda / 2 * (J - 1) * (J - 1);
+  const double W = neo_hooke_density(F0, mu, lmbda);
   const double R = c.number("geometry.R"), H = c.number("geometry.H");
   const double Rs = (R * R + H * H) / (2 * H);
   const double V = M_PI * ((Rs * Rs * Rs - std::pow(Rs * Rs - r * r, 1.5)) / 3 - (Rs - H) * r * r / 2);
@@ -256,11 +258,7 @@ TEST_P(Energies, GlandLobe)
   m->set_parameter("y_l", {b});
   m->set_parameter("a_l", {a});
   m->set_parameter("b_l", {b});
-  double trFFt = 0;
-  for (double f : F0)
-    trFFt += f * f;
-  const double J = det3(F0);
-  const double W = mu / 2 * (trFFt - 3 - 2 * std::log(J)) + lmbda / 2 * (J - 1) * (J - 1);
+  const double W = neo_hooke_density(F0, mu, lmbda);
   const double weight_volume = 16 * M_PI * a * a * b / 105;
   EXPECT_NEAR(m->energy("gland_lobe") / (ml * W * weight_volume), 1.0, 0.05);
   // Lifted out of the cap the lobe holds no tissue: no energy.
