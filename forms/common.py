@@ -77,7 +77,7 @@ def param(key, unit, default, lo, hi, doc, lo_open=False, shape=()):
                 lo_open=lo_open, shape=list(shape))
 
 
-def candidate(parameter, unit, typical, physics, sets, flags=None, family=None, extends=None):
+def candidate(parameter, unit, typical, physics, sets, flags=None, family=None, extends=None, default=True):
     """Metadata of a diagnosis candidate (docs/DIAGNOSE.md): the term switched
     on with one scalar q >= 0, nested in the model (q = 0 reproduces the model
     without the term).
@@ -98,10 +98,13 @@ def candidate(parameter, unit, typical, physics, sets, flags=None, family=None, 
     refines (e.g. a regional variation of the skin): it names that
     candidate's physics and applies only where that term is on, so a later
     term must explain the residual better than the found physics' own
-    variation does (docs/DIAGNOSE.md); not with family.
+    variation does (docs/DIAGNOSE.md); not with family. default: whether a
+    diagnosis without --candidates tests it (False: a form kept available
+    for --candidates that its out-of-sample test did not admit to the
+    default library, docs/DIAGNOSE.md).
     """
     return dict(parameter=parameter, unit=unit, typical=typical, physics=physics,
-                sets=dict(sets), flags=dict(flags or {}), family=family, extends=extends)
+                sets=dict(sets), flags=dict(flags or {}), family=family, extends=extends, default=default)
 
 
 def fit_alias(target, role):

@@ -58,7 +58,7 @@ def candidate_row(term, c):
     flags = ", ".join(f"{{{cstr(k)}, {'true' if v else 'false'}}}" for k, v in c["flags"])
     return (f"{{{cstr(term)}, {cstr(c['parameter'])}, {cstr(c['unit'])}, {cstr(c['physics'])}, "
             f"{num(c['typical'])}, {{{sets}}}, {{{flags}}}, {cstr(c['family'] or term)}, "
-            f"{cstr(c['extends'])}}}")
+            f"{cstr(c['extends'])}, {'true' if c['default'] else 'false'}}}")
 
 
 def alias_row(alias, a):

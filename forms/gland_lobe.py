@@ -9,7 +9,9 @@ lobe's centre the tissue is (1 + m_l) times stiffer, and the excess falls
 smoothly (C1) to nothing on the ellipsoid rho = 1, of radius a_l around the
 axis and half-depth b_l along it. gland_core.py is the other form of the
 gland: a sharp cylinder through the whole depth, skin to chest. m_l = 0
-reproduces the model without a gland.
+reproduces the model without a gland. Not in the diagnosis' default
+library (`--candidates` names it): on the gland-form set it changed no
+verdict (docs/DIAGNOSE.md, "Measured 2026-12-06, afternoon").
 """
 from common import Constant, X, candidate, domain, dx, F, J, neo_hooke, param
 from tissue import mu, lmbda
@@ -36,7 +38,7 @@ PARAMETERS = {
 CANDIDATE = candidate("gland.lobe_excess", "1", 2.0,
                       "a stiffer glandular lobe buried under the fat on the nipple axis "
                       "(stiffness up to (1 + m_l) x tissue at its centre)",
-                      sets={"m_l": "q"}, family="gland_core")
+                      sets={"m_l": "q"}, family="gland_core", default=False)
 
 rho2 = (X[0] ** 2 + X[2] ** 2) / a_l ** 2 + (X[1] - y_l) ** 2 / b_l ** 2
 weight = max_value(1.0 - rho2, 0.0) ** 2                        # w = max(1 - rho^2, 0)^2

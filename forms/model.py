@@ -102,12 +102,15 @@ for _m in _modules:
     for _key, _value in _c["flags"].items():
         if not isinstance(_key, str) or not isinstance(_value, bool):
             raise RuntimeError(f"{_where}: flags must map case keys to True/False, got {_key!r}: {_value!r}")
+    if not isinstance(_c.get("default", True), bool):
+        raise RuntimeError(f"{_where}: default = {_c['default']!r} must be True or False")
     if _c.get("family") and _c.get("extends"):
         raise RuntimeError(f"{_where}: family and extends exclude each other (an extension names "
                            "the physics of the candidate it extends)")
     CANDIDATES[_m.NAME] = dict(parameter=_c["parameter"], unit=_c["unit"], typical=float(_c["typical"]),
                                physics=_c["physics"], sets=_sets, flags=list(_c["flags"].items()),
-                               family=_c.get("family") or _m.NAME, extends=_c.get("extends") or "")
+                               family=_c.get("family") or _m.NAME, extends=_c.get("extends") or "",
+                               default=_c.get("default", True))
 for _n, _c in CANDIDATES.items():
     _base = CANDIDATES.get(_c["extends"]) if _c["extends"] else None
     if _c["extends"] and (_base is None or _base["extends"]):

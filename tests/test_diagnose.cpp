@@ -286,6 +286,7 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
     std::string name, parameter, unit, first_key;
     double typical;
     std::string family, extends;
+    bool in_default_library = true;
   };
   const std::vector<Declared> declared = {
       {"skin", "skin.mu", "Pa", "skin.mu", 2e4, "skin", ""},
@@ -294,7 +295,7 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
       {"suspensory_ligament", "ligament.k", "Pa/m", "ligament.k", 2e3, "suspensory_ligament", ""},
       {"suspensory_cables", "cables.k", "Pa/m", "cables.k", 2e3, "suspensory_ligament", ""},
       {"gland_core", "gland.excess", "1", "gland.excess", 2.0, "gland_core", ""},
-      {"gland_lobe", "gland.lobe_excess", "1", "gland.lobe_excess", 2.0, "gland_core", ""}};
+      {"gland_lobe", "gland.lobe_excess", "1", "gland.lobe_excess", 2.0, "gland_core", "", false}};
   const auto& lib = candidate_library();
   ASSERT_EQ(lib.size(), declared.size());
   for (std::size_t i = 0; i < lib.size(); ++i)
@@ -305,6 +306,7 @@ TEST(Candidates, TableIsWhatTheFormsDeclare)
     EXPECT_DOUBLE_EQ(lib[i].typical, declared[i].typical);
     EXPECT_EQ(lib[i].family, declared[i].family);
     EXPECT_EQ(lib[i].extends, declared[i].extends);
+    EXPECT_EQ(lib[i].in_default_library, declared[i].in_default_library) << lib[i].name;
     ASSERT_FALSE(lib[i].sets.empty());
     EXPECT_EQ(lib[i].sets[0].key, declared[i].first_key);
     EXPECT_FALSE(lib[i].physics.empty());
@@ -360,6 +362,17 @@ TEST(Candidates, RulesSetTheCaseKeys)
   EXPECT_TRUE(lig.flag("terms.suspensory_ligament"));
   EXPECT_DOUBLE_EQ(lig.number("ligament.k"), 1234.0);
   EXPECT_THROW(candidate("gland_core").with(Config(), 0.0), std::invalid_argument);
+}
+
+TEST(Candidates, TheDefaultLibraryLeavesOutTheFormsNotAdmitted)
+{
+  // gland_lobe did not pass its pre-registered test (docs/DIAGNOSE.md): a
+  // diagnosis tests it only when --candidates names it.
+  EXPECT_FALSE(is_wanted(candidate("gland_lobe"), {}));
+  EXPECT_TRUE(is_wanted(candidate("gland_lobe"), {"gland_lobe", "skin"}));
+  EXPECT_TRUE(is_wanted(candidate("gland_core"), {}));
+  EXPECT_FALSE(is_wanted(candidate("gland_core"), {"gland_lobe"}));
+  EXPECT_EQ(candidates_not_default(), "gland_lobe");
 }
 
 TEST(Candidates, OneFormPerPhysics)

@@ -13,7 +13,8 @@ const std::vector<Candidate>& candidate_library()
   {
     std::vector<Candidate> out;
     for (const auto& c : generated::candidates())
-      out.push_back({c.term, c.parameter, c.unit, c.physics, c.typical, c.sets, c.flags, c.family, c.extends});
+      out.push_back({c.term, c.parameter, c.unit, c.physics, c.typical, c.sets, c.flags, c.family, c.extends,
+                     c.in_default_library});
     return out;
   }();
   return lib;
@@ -25,6 +26,21 @@ std::string candidate_names()
   for (const auto& c : candidate_library())
     names += (names.empty() ? "" : ", ") + c.name;
   return names;
+}
+
+std::string candidates_not_default()
+{
+  std::string names;
+  for (const auto& c : candidate_library())
+    if (!c.in_default_library)
+      names += (names.empty() ? "" : ", ") + c.name;
+  return names;
+}
+
+bool is_wanted(const Candidate& c, const std::vector<std::string>& wanted)
+{
+  return wanted.empty() ? c.in_default_library
+                        : std::find(wanted.begin(), wanted.end(), c.name) != wanted.end();
 }
 
 std::string candidate_parameters()

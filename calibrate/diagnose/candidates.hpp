@@ -28,6 +28,9 @@ struct Candidate
   /// empty. An extension names its base's physics and applies only where
   /// the base term is on.
   std::string extends;
+  /// Tested by a diagnosis that names no candidates (--candidates); false
+  /// for a form kept available that its test did not admit.
+  bool in_default_library = true;
 
   /// True if `other` is a form of the same physics (the same family).
   bool same_physics(const Candidate& other) const { return family == other.family; }
@@ -45,6 +48,9 @@ struct Candidate
 
 /// Every term's CANDIDATE, in the order of forms/registry.py.
 const std::vector<Candidate>& candidate_library();
+/// True if a diagnosis asked for the candidates `wanted` (--candidates;
+/// empty: the default library) tests `c`.
+bool is_wanted(const Candidate& c, const std::vector<std::string>& wanted);
 /// Throws InputError for an unknown name (lists the library).
 const Candidate& candidate(const std::string& name);
 /// The physics the candidates `names` name when found (their families),
@@ -55,6 +61,8 @@ std::vector<std::string> physics_of(const std::vector<std::string>& names);
 int physics_found(const std::vector<std::string>& names);
 /// The candidates' names, comma separated (for help texts and messages).
 std::string candidate_names();
+/// The names of the candidates not in the default library, comma separated.
+std::string candidates_not_default();
 /// "name: parameter [unit]; ..." of every candidate (help texts).
 std::string candidate_parameters();
 } // namespace breastsim::calibration

@@ -170,8 +170,7 @@ std::size_t score_candidates(Search& s, Round& rd)
   const auto& wanted = s.o.candidates;
   std::vector<const Candidate*> tested;
   for (const auto& c : candidate_library())
-    if (c.applicable(s.state.config)
-        && (wanted.empty() || std::find(wanted.begin(), wanted.end(), c.name) != wanted.end()))
+    if (c.applicable(s.state.config) && is_wanted(c, wanted))
       tested.push_back(&c);
   for (const Candidate* c : tested)
     rd.scores.push_back(

@@ -78,7 +78,11 @@ Command add_diagnose_command(CLI::App& root)
                                          + ")")->capture_default_str();
   app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library ("
                                                      + calibration::candidate_names()
-                                                     + "; default: every candidate whose term is off)");
+                                                     + "; default: every candidate whose term is off"
+                                                     + (calibration::candidates_not_default().empty()
+                                                            ? std::string()
+                                                            : ", but " + calibration::candidates_not_default())
+                                                     + ")");
   app->add_option("--alpha", o->d.alpha, "false-discovery level of a round")->capture_default_str();
   app->add_option("--max-rounds", o->d.max_rounds, "physics found at most: rounds of discovery, not counting a round that finds a regional variation of a found physics (skin_upper_pole)")->capture_default_str();
   app->add_option("--refits", o->d.refits, "significant candidates refitted per round (the largest "

@@ -73,6 +73,7 @@ struct CandidateInfo
   std::vector<std::pair<std::string, bool>> flags;  // case flags set with the term on
   std::string family;    // the physics it names (its own name unless another form shares it)
   std::string extends;   // the candidate it refines (applies only where that term is on), or ""
+  bool in_default_library; // tested by a diagnosis without --candidates
 };
 
 /// What a fitted parameter is: sets its search bounds and the
