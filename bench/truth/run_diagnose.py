@@ -93,6 +93,17 @@ def run_one(binary, manifest_dir, entry, out, case, extra, nice, rerun, mpi=None
     return "ran" if rc == 0 else "failed"
 
 
+def check_runs(parser, runs):
+    """Refuse, through parser.error, a --run MANIFEST RUN_DIR pair that is missing or does not exist."""
+    if not runs:
+        parser.error("--run MANIFEST RUN_DIR is required (repeatable)")
+    for manifest, run_dir in runs:
+        if not Path(manifest).is_file():
+            parser.error(f"--run: no manifest {manifest}")
+        if not Path(run_dir).is_dir():
+            parser.error(f"--run: no run folder {run_dir}")
+
+
 # -- scoring ---------------------------------------------------------------------
 def pseudo_true_recordings(manifest_dir):
     """The recordings of pseudo_true.py's output beside the manifest, {} if absent."""

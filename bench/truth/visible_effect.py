@@ -25,7 +25,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import pseudo_true_recordings
+from run_diagnose import check_runs, pseudo_true_recordings
 
 
 def term_effect(dia, physics):
@@ -129,13 +129,7 @@ def main(argv=None):
     if a.selftest:
         selftest()
         return 0
-    if not a.run:
-        ap.error("--run MANIFEST RUN_DIR is required (repeatable)")
-    for manifest, run_dir in a.run:
-        if not Path(manifest).is_file():
-            ap.error(f"--run: no manifest {manifest}")
-        if not Path(run_dir).is_dir():
-            ap.error(f"--run: no run folder {run_dir}")
+    check_runs(ap, a.run)
     rows = [r for manifest, run_dir in a.run for r in rows_of_run(manifest, run_dir)]
     text = markdown(rows)
     print(text, end="")
