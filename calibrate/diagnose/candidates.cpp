@@ -20,21 +20,28 @@ const std::vector<Candidate>& candidate_library()
   return lib;
 }
 
-std::string candidate_names()
+namespace
+{
+// The library's names that satisfy keep, joined by ", ".
+template <typename Keep>
+std::string joined_names(Keep keep)
 {
   std::string names;
   for (const auto& c : candidate_library())
-    names += (names.empty() ? "" : ", ") + c.name;
+    if (keep(c))
+      names += (names.empty() ? "" : ", ") + c.name;
   return names;
+}
+} // namespace
+
+std::string candidate_names()
+{
+  return joined_names([](const Candidate&) { return true; });
 }
 
 std::string candidates_not_default()
 {
-  std::string names;
-  for (const auto& c : candidate_library())
-    if (!c.in_default_library)
-      names += (names.empty() ? "" : ", ") + c.name;
-  return names;
+  return joined_names([](const Candidate& c) { return !c.in_default_library; });
 }
 
 bool is_wanted(const Candidate& c, const std::vector<std::string>& wanted)

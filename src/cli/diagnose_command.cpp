@@ -76,12 +76,11 @@ Command add_diagnose_command(CLI::App& root)
   add_output_option(app, o->out, "output folder (default results/diagnosis); replaced on success");
   app->add_option("--fit", o->d.fit, "current-model parameters refitted (" + calibration::fit_alias_names()
                                          + ")")->capture_default_str();
+  const std::string left_out = calibration::candidates_not_default();
   app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library ("
                                                      + calibration::candidate_names()
                                                      + "; default: every candidate whose term is off"
-                                                     + (calibration::candidates_not_default().empty()
-                                                            ? std::string()
-                                                            : ", but " + calibration::candidates_not_default())
+                                                     + (left_out.empty() ? std::string() : ", but " + left_out)
                                                      + ")");
   app->add_option("--alpha", o->d.alpha, "false-discovery level of a round")->capture_default_str();
   app->add_option("--max-rounds", o->d.max_rounds, "physics found at most: rounds of discovery, not counting a round that finds a regional variation of a found physics (skin_upper_pole)")->capture_default_str();
