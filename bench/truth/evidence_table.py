@@ -3,7 +3,7 @@
 genuine (the candidate is hidden in the truth) or spurious, from the
 diagnosis.json files: the data for choosing a decision rule.
 
-    python3 bench/truth/evidence_table.py [--manifest M] [--out RESULTS]
+    python3 bench/truth/evidence_table.py [--manifest M] [--out RESULTS] [--sole-refusals]
     python3 bench/truth/evidence_table.py --selftest
 
 Per refit (round, candidate): LR and its critical value, the margin
@@ -15,6 +15,9 @@ continuum where made and whether it passed, accepted or not and why; how
 many refits the refinement check met and refused. Then, for the accepted and
 for the refused refits, the range of each measure over the genuine and the
 spurious ones: a measure whose ranges do not overlap separates them.
+Last, the refits that one rule alone refused (every other rule held), per
+rule, genuine and spurious: what each rule carries, and what loosening it
+would let through to the checks after it.
 Only the standard library.
 """
 import argparse
@@ -96,6 +99,53 @@ def refinement_counts(rows):
     return {g: tuple(v) for g, v in out.items()}
 
 
+# The decision rules, recognised by how diagnosis.json's rejected_because
+# words them (evidence.cpp); the first opening that matches names the rule.
+RULE_OPENINGS = (
+    ("its LR does not survive refinement", "refinement"),
+    ("its LR ", "significance"),
+    ("its effect, RMS", "effect"),
+    ("its 95 % interval reaches the null", "effect_at_interval_end"),
+    ("it does not improve the prediction", "held_out"),
+    ("it improves the prediction of only", "held_out"),
+    ("it explains ", "misfit_share"),
+)
+
+
+# The measure (MEASURES) each rule judges, shown beside a refit it refused alone.
+RULE_MEASURE = {"significance": "margin", "effect": "effect_mm", "effect_at_interval_end": "edge_mm",
+                "held_out": "held_out_positive", "misfit_share": "share", "refinement": "fine_over_lr"}
+
+
+def rule_of(reason):
+    """The rule a rejected_because sentence states, or 'other'."""
+    return next((rule for opening, rule in RULE_OPENINGS if reason.startswith(opening)), "other")
+
+
+def sole_refusals(rows):
+    """{rule: [(recording, round, candidate, genuine, value)]} of the refits
+    refused by that rule alone; value: the measure the rule judges (None if none)."""
+    out = {}
+    for name, rd, cand, genuine, accepted, ev in rows:
+        reasons = ev.get("rejected_because", [])
+        if not accepted and len(reasons) == 1:
+            rule = rule_of(reasons[0])
+            value = MEASURES[RULE_MEASURE[rule]](ev) if rule in RULE_MEASURE else None
+            out.setdefault(rule, []).append((name, rd, cand, genuine, value))
+    return out
+
+
+def print_sole_refusals(rows):
+    print("\n| rule (measure) | refused by it alone: genuine | spurious |")
+    print("|---|---|---|")
+    table = sole_refusals(rows)
+    if not table:
+        print("| (none) | - | - |")
+    for rule, refused in sorted(table.items()):
+        cell = lambda g: ", ".join(f"{n} r{rd} {c} ({fmt(v)})" for n, rd, c, gen, v in refused if gen == g) or "-"
+        print(f"| {rule} ({RULE_MEASURE.get(rule, '-')}) | {cell(True)} | {cell(False)} |")
+
+
 def print_tables(rows):
     print("| recording | round | candidate | genuine | accepted | LR | critical | "
           + " | ".join(MEASURES) + " | refinement | rejected because |")
@@ -117,6 +167,7 @@ def print_tables(rows):
         cells = [f"{fmt(group[m][0])} - {fmt(group[m][1])} ({group[m][2]})" if m in group else "-"
                  for m in MEASURES]
         print(f"| {label} | " + " | ".join(cells) + " |")
+    print_sole_refusals(rows)
 
 
 def selftest():
@@ -145,6 +196,16 @@ def selftest():
         assert got[(False, False)]["held_out_over_lr"] == (-0.125, -0.125, 1), got
         assert "fine_over_lr" not in got[(False, False)], got
         assert refinement_counts(rows) == {True: (1, 0), False: (0, 0)}, refinement_counts(rows)
+        assert rule_of("its LR 31.6 is below the critical value 47.3") == "significance"
+        assert rule_of("its LR does not survive refinement: 175.0 on the finer mesh") == "refinement"
+        assert rule_of("its 95 % interval reaches the null: at the interval's end") == "effect_at_interval_end"
+        assert rule_of("it improves the prediction of only 2 of 4 held-out postures") == "held_out"
+        assert rule_of("it explains 29 % of the misfit") == "misfit_share"
+        assert rule_of("something new") == "other"
+        assert sole_refusals(rows) == {"other": [("r", 1, "suspensory_ligament", False, None)]}, sole_refusals(rows)
+        lone = dict(lig, rejected_because=["it explains 10 % of the misfit it is tested against"])
+        got = sole_refusals([("r", 2, "suspensory_ligament", False, False, lone)])
+        assert got == {"misfit_share": [("r", 2, "suspensory_ligament", False, 0.1)]}, got
         # a refused check, and a cable form of a hidden ligament counts as genuine
         cab = dict(lig, candidate="suspensory_cables", physics="suspensory_ligament",
                    likelihood_ratio_fine=20.0, likelihood_ratio_continuum=10.0,
@@ -162,12 +223,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--manifest", default=str(HERE / "manifest.json"))
     ap.add_argument("--out", default=str(HERE / "results"))
+    ap.add_argument("--sole-refusals", action="store_true",
+                    help="print only the table of the refits one rule alone refused")
     ap.add_argument("--selftest", action="store_true", help="check the table on hand-made diagnoses")
     a = ap.parse_args()
     if a.selftest:
         return selftest()
     manifest = json.loads(Path(a.manifest).read_text())
-    print_tables(list(refits(manifest, Path(a.out))))
+    rows = list(refits(manifest, Path(a.out)))
+    (print_sole_refusals if a.sole_refusals else print_tables)(rows)
     return 0
 
 
