@@ -6,13 +6,17 @@ diagnosing again.
     python3 bench/truth/rescore.py --manifest bench/truth/chest_wall/manifest.json \
         --summary bench/truth/measured/summary_2026-12-04-chest-wall-main-2ranks.md [--out FILE.json]
     python3 bench/truth/rescore.py --pool M1 S1 --pool M2 S2 ...   # several sets scored together
+    python3 bench/truth/rescore.py --benchmark bench/truth/benchmark_runs.json   # every set, one run each
     python3 bench/truth/rescore.py --selftest
 
 --summary is a run's summary.json (run_diagnose.py; full precision) or its
 summary.md (the table's intervals are printed to 3 significant digits: a
 reference value within ROUNDING of an interval end is counted as the table
 says and listed as "borderline"). Prints the summary in run_diagnose.py's
-format with the rescored coverage. Only the standard library.
+format with the rescored coverage. --benchmark reads the run of each set
+from a committed list and refuses a list that leaves out a set of its
+folder (every manifest.json under it): the benchmark's figures are over
+all the sets. Only the standard library.
 """
 import argparse
 import json
@@ -21,7 +25,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms, family_of_form
+from run_diagnose import HERE, coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms, family_of_form
 
 ROUNDING = 5e-3     # relative half-width of a 3-significant-digit number's last digit
 
@@ -119,20 +123,42 @@ def rescore(runs):
     return s
 
 
+def benchmark_runs(path, root=HERE):
+    """[(manifest, summary)] of every set of the benchmark list `path`:
+    {"folder": F, "runs": {SET_FOLDER: SUMMARY}}, paths relative to root
+    (bench/truth); every manifest.json under F must have a run."""
+    spec = json.loads(Path(path).read_text())
+    folder = root / spec["folder"]
+    sets = sorted(str(m.parent.relative_to(root)) for m in folder.rglob("manifest.json"))
+    missing = [s for s in sets if s not in spec["runs"]]
+    if missing:
+        sys.exit(f"rescore.py: {path} has no run of the set(s) {', '.join(missing)}: the benchmark is every set")
+    runs = []
+    for set_folder, summary in sorted(spec["runs"].items()):
+        manifest, summary = root / set_folder / "manifest.json", root / summary
+        for f in (manifest, summary):
+            if not f.is_file():
+                sys.exit(f"rescore.py: {path}: no file {f}")
+        runs.append((manifest, summary))
+    return runs
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--manifest")
     ap.add_argument("--summary", help="a run's summary.json or summary.md")
     ap.add_argument("--pool", nargs=2, action="append", default=[], metavar=("MANIFEST", "SUMMARY"),
                     help="a further set's manifest and run, scored together with the others (repeatable)")
+    ap.add_argument("--benchmark", help="a list of one run per set (benchmark_runs.json): every set pooled")
     ap.add_argument("--out", help="write the rescored summary (JSON) here")
     ap.add_argument("--selftest", action="store_true")
     a = ap.parse_args(argv)
     if a.selftest:
         return selftest()
-    if bool(a.manifest) != bool(a.summary) or not (a.manifest or a.pool):
-        ap.error("--manifest and --summary (or --pool MANIFEST SUMMARY) are required")
-    s = rescore(([(a.manifest, a.summary)] if a.manifest else []) + [tuple(x) for x in a.pool])
+    if bool(a.manifest) != bool(a.summary) or not (a.manifest or a.pool or a.benchmark):
+        ap.error("--manifest and --summary (or --pool MANIFEST SUMMARY, or --benchmark LIST) are required")
+    runs = ([(a.manifest, a.summary)] if a.manifest else []) + [tuple(x) for x in a.pool]
+    s = rescore(runs + (benchmark_runs(a.benchmark) if a.benchmark else []))
     command = "python3 bench/truth/rescore.py " + " ".join(argv if argv is not None else sys.argv[1:])
     print(markdown(s, s["rows"], command))
     if s["borderline"]:
@@ -180,6 +206,15 @@ def selftest():
                           "coverage": []}, {"hidden": ["suspensory_ligament"], "hidden_label": "suspensory_ligament",
                                             "strength_class": "weak", "effects": []}, {})
         assert cable["forms"] == {"suspensory_ligament": "suspensory_cables"}, cable
+        (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md"}}))
+        try:
+            benchmark_runs(d / "list.json", root=d)   # "other" has a manifest and no run
+            raise AssertionError("a list that leaves a set out was accepted")
+        except SystemExit as e:
+            assert "no run of the set(s) other" in str(e), e
+        (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md", "other": "other/summary.md"}}))
+        assert benchmark_runs(d / "list.json", root=d) == [(d / "manifest.json", d / "summary.md"),
+                                                          (pooled / "manifest.json", pooled / "summary.md")]
         assert parse_intervals("1.2e-06 [9e-07, 2e-06]; 0.3 [-, 0.5]") == [(1.2e-6, 9e-7, 2e-6), (0.3, None, 0.5)]
     print("selftest passed")
     return 0
