@@ -46,7 +46,9 @@ it).
     nice -n 19 python3 bench/truth/pseudo_true.py --form suspensory_ligament=suspensory_cables --only A,B
 
 Writes pseudo_true.json beside the manifest, one entry per recording as
-soon as it is done (resumable).
+soon as it is done (resumable). A recording whose fit meets a posture the
+truth's solver cannot solve is reported, left without an entry, and the
+others go on (exit code 1 at the end).
 """
 import argparse
 import math
@@ -66,6 +68,7 @@ from forms_truth.candidate_forms import CANDIDATE_FORMS, OTHER_FORMS  # noqa: E4
 from geometry import build_half_cap  # noqa: E402
 from problem import Problems  # noqa: E402
 from recording_io import read_manifest, write_json_atomic  # noqa: E402
+from solver import SolveError  # noqa: E402
 from surface import Skin  # noqa: E402
 
 DEFINITION = ("(q*, mu*, lambda*) = argmin sum_postures int_skin ((u - u_truth) . n)^2 dA: every hidden "
@@ -259,6 +262,23 @@ def compute(fitter, a, name, entry, stored, previous):
     return new, res, time.perf_counter() - t0
 
 
+def compute_each(todo, compute_one, store):
+    """store(name, compute_one(name, entry)) for each (name, entry) of todo;
+    a recording whose fit meets a posture the truth cannot solve
+    (SolveError) is reported and skipped, and the others go on. Returns
+    the names skipped."""
+    failed = []
+    for name, entry in todo:
+        try:
+            result = compute_one(name, entry)
+        except SolveError as e:
+            print(f"{name}: not computed: {e}", file=sys.stderr, flush=True)
+            failed.append(name)
+            continue
+        store(name, result)
+    return failed
+
+
 def main():
     a = parse_args()
     folder = Path(a.folder) if a.folder else (HERE if a.which == "main" else HERE / a.which)
@@ -283,14 +303,18 @@ def main():
     for name, entry in todo:
         if entry["truth_mesh"]["size_m"] != 0.006 or entry["truth_mesh"].get("rim_size_m"):
             sys.exit(f"pseudo_true.py: {name}: truth mesh {entry['truth_mesh']} is not the uniform 6 mm mesh")
-        out["recordings"][name], res, seconds = compute(fitter, a, name, entry, out["recordings"].get(name),
-                                                        previous)
+
+    def store(name, result):
+        out["recordings"][name], res, seconds = result
         out["recordings"] = dict(sorted(out["recordings"].items()))
         write_json_atomic(out_path, out)
         print(name, {c: (f"{v['value']:.4g} (equivalent {fmt(v['equivalent'])}, "
                          f"unexplained {v['unexplained_share']:.2f})") for c, v in res.items()},
               f"{seconds:.1f} s", flush=True)
-    return 0
+    failed = compute_each(todo, lambda n, e: compute(fitter, a, n, e, out["recordings"].get(n), previous), store)
+    if failed:
+        print(f"pseudo_true.py: not computed (a posture solve failed): {', '.join(failed)}", file=sys.stderr)
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":

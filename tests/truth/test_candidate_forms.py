@@ -26,7 +26,9 @@ candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
    so q* must equal its compliance, with nothing left unexplained, from a
    start a factor 2.5 away; and jointly, the same bed with the skin
    candidate's own form: both values back from starts a factor 2.5 and 0.5
-   away.
+   away;
+3. a recording whose fit meets a posture the truth cannot solve is skipped
+   and reported, and the others are still computed and stored.
 
 Run: /usr/bin/python3 tests/truth/test_candidate_forms.py SOURCE_DIR
 """
@@ -41,7 +43,8 @@ import numpy as np  # noqa: E402
 from forms_truth import chest_contact, tissue  # noqa: E402
 from forms_truth.candidate_forms import CANDIDATE_FORMS, D_A, LOBE, OTHER_FORMS, R_G, T_S  # noqa: E402
 from forms_truth.gland_ellipsoid import core_volume  # noqa: E402
-from pseudo_true import Fitter  # noqa: E402
+from pseudo_true import Fitter, compute_each  # noqa: E402
+from solver import SolveError  # noqa: E402
 
 R, H = 0.07, 0.06
 RS = (R * R + H * H) / (2 * H)
@@ -186,7 +189,19 @@ def joint_pseudo_true_of_own_family(fitter):
     print(f"unexplained share {res['skin']['unexplained_share']:.2e}, history {res['skin']['history']}")
 
 
+def a_failed_fit_skips_only_its_recording():
+    def compute_one(name, entry):
+        if name == "b":
+            raise SolveError("posture theta = 90.0 deg: no convergence")
+        return entry * 2
+    stored = {}
+    failed = compute_each([("a", 1), ("b", 2), ("c", 3)], compute_one, stored.__setitem__)
+    if failed != ["b"] or stored != {"a": 2, "c": 6}:
+        failures.append(f"compute_each: failed {failed}, stored {stored}")
+
+
 if __name__ == "__main__":
+    a_failed_fit_skips_only_its_recording()
     f = Fitter(0.014)
     closed_forms(f)
     tension_field_skin(f)
