@@ -22,7 +22,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import check_runs
+from run_diagnose import check_runs, emit
 
 
 def round_one_refit(dia, form):
@@ -59,14 +59,19 @@ def span(values):
     return f"{min(values):.2f}-{max(values):.2f}" if values else "-"
 
 
+def quotient(b, a):
+    """b / a to two decimals; "-" unless a > 0 (as the summary line's ranges)."""
+    return f"{b / a:.2f}" if a > 0 else "-"
+
+
 def markdown(rows, form_a, form_b):
     out = [f"| recording | hidden | effect {form_a} [mm] | effect {form_b} [mm] | effect B/A | "
            f"LR {form_a} (critical) | LR {form_b} (critical) | LR B/A | named |",
            "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         out.append(f"| {r['name']} | {r['hidden']} | {r['effect_a']:.3f} | {r['effect_b']:.3f} | "
-                   f"{r['effect_b'] / r['effect_a']:.2f} | {r['lr_a']:.1f} ({r['crit_a']:.1f}) | "
-                   f"{r['lr_b']:.1f} ({r['crit_b']:.1f}) | {r['lr_b'] / r['lr_a']:.2f} | {r['named']} |")
+                   f"{quotient(r['effect_b'], r['effect_a'])} | {r['lr_a']:.1f} ({r['crit_a']:.1f}) | "
+                   f"{r['lr_b']:.1f} ({r['crit_b']:.1f}) | {quotient(r['lr_b'], r['lr_a'])} | {r['named']} |")
     effect = [r["effect_b"] / r["effect_a"] for r in rows if r["effect_a"] > 0]
     lr = [r["lr_b"] / r["lr_a"] for r in rows if r["lr_a"] > 0]
     out += ["", f"B = {form_b}, A = {form_a}: {len(rows)} recordings with both refitted in round 1; "
@@ -116,10 +121,7 @@ def main(argv=None):
         ap.error("--forms A B is required")
     check_runs(ap, a.run)
     rows = [r for m, d in a.run for r in rows_of_run(m, d, *a.forms)]
-    text = markdown(rows, *a.forms)
-    print(text, end="")
-    if a.out:
-        Path(a.out).write_text(text)
+    emit(markdown(rows, *a.forms), a.out)
     return 0
 
 

@@ -8,14 +8,15 @@ problem serves every recording with the same effects.
 from dolfinx import fem
 
 from forms_truth import EFFECTS, chest_contact, gravity, tissue
-from forms_truth.candidate_forms import CANDIDATE_FORMS, OTHER_FORMS
+from forms_truth.candidate_forms import CANDIDATE_FORMS, EXTENSIONS, OTHER_FORMS
 from forms_truth.context import Context
 from geometry import TAGS
 from solver import TruthModel
 
 
 # Terms by name: the hidden effects, and the candidates' forms (pseudo_true.py).
-MODULES = {**EFFECTS, **{m.NAME: m for m in (*CANDIDATE_FORMS.values(), *OTHER_FORMS.values())}}
+MODULES = {**EFFECTS, **{m.NAME: m for m in (*CANDIDATE_FORMS.values(), *OTHER_FORMS.values(),
+                                              *EXTENSIONS.values())}}
 
 
 class Problem:

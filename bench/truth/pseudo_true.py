@@ -37,13 +37,17 @@ version are recomputed.
     python3 bench/truth/pseudo_true.py --only A,B --out /tmp/part.json   # a second process: its own file
 
 Another form of a candidate's physics (forms_truth/candidate_forms.py
-OTHER_FORMS, e.g. the ligaments as cables) gets its own pseudo-true value
+ALTERNATIVE_FORMS, e.g. the ligaments as cables) gets its own pseudo-true value
 with `--form suspensory_ligament=suspensory_cables`: the same fit with that
 form in place of the physics' candidate, stored under the recording's
 "other_forms" (run_diagnose.py compares a discovery named in that form with
-it).
+it). So does a candidate with a regional variation that extends it
+(EXTENSIONS, e.g. `--form skin=skin+skin_upper_pole`): both terms in place
+of the physics' effects, one q each, fitted jointly with mu and lambda (the
+variation starts at EXTENSION_START times the candidate's start).
 
     nice -n 19 python3 bench/truth/pseudo_true.py --form suspensory_ligament=suspensory_cables --only A,B
+    nice -n 19 python3 bench/truth/pseudo_true.py --form skin=skin+skin_upper_pole --only skin_strong_3
 
 Writes pseudo_true.json beside the manifest, one entry per recording as
 soon as it is done (resumable). A recording whose fit meets a posture the
@@ -64,7 +68,7 @@ import numpy as np  # noqa: E402
 
 import benchmark_set  # noqa: E402
 
-from forms_truth.candidate_forms import CANDIDATE_FORMS, OTHER_FORMS  # noqa: E402
+from forms_truth.candidate_forms import ALTERNATIVE_FORMS, CANDIDATE_FORMS, physics_of_form  # noqa: E402
 from geometry import build_half_cap  # noqa: E402
 from problem import Problems  # noqa: E402
 from recording_io import read_manifest, write_json_atomic  # noqa: E402
@@ -81,6 +85,7 @@ STEP = 0.05          # forward-difference step in ln q
 MAX_ITERATIONS = 8
 TOL_LOG = 0.005      # stop when |delta ln q| is below this
 MAX_LOG_STEP = 1.5   # at most a factor e^1.5 per Gauss-Newton step
+EXTENSION_START = 0.5  # a regional variation's q starts at this times its base's start
 
 
 class Fitter:
@@ -116,15 +121,18 @@ class Fitter:
         candidate form), mu and lambda fitted with them; `u_truth`: the truth
         solves, computed here if not given; `start`: starting values by
         candidate or "mu", "lambda" (default: the equivalents, the truth's);
-        `form`: (physics, FORM) replaces that physics' effects by the other
-        form FORM (OTHER_FORMS) instead, its values keyed by FORM."""
+        `form`: (physics, FORM) replaces that physics' effects by the
+        alternative form FORM instead (ALTERNATIVE_FORMS: another form, or
+        the candidate with a regional variation, one q per term), its
+        values keyed by each term's name."""
         hidden = [(e["model"], e["pattern"]) for e in entry["effects"]]
         strengths = {e["model"]: e["strength"]["value"] for e in entry["effects"]}
         indices = replaceable(entry) if indices is None else list(indices)
         u_truth = self.truth(entry) if u_truth is None else u_truth
-        targets = [entry["effects"][k] for k in indices]
-        forms = [OTHER_FORMS[form[1]] if form and t["candidate"] == form[0] else CANDIDATE_FORMS[t["candidate"]]
-                 for t in targets]
+        groups = [(entry["effects"][k], ALTERNATIVE_FORMS[form[1]] if form and entry["effects"][k]["candidate"]
+                   == form[0] else [CANDIDATE_FORMS[entry["effects"][k]["candidate"]]]) for k in indices]
+        targets = [t for t, g in groups for _ in g]                # the hidden effect each form replaces
+        forms = [f for _, g in groups for f in g]
         others = [h for k, h in enumerate(hidden) if k not in indices]
         u_none = self.solve(entry, others, strengths, u_truth)     # the truth without the replaced effects
         effects = others + [(f.NAME, {}) for f in forms]
@@ -137,7 +145,7 @@ class Fitter:
             return u, self.residual(u_truth, u)
 
         start = start or {}
-        y0 = np.log([start.get(t["candidate"], t["q_equivalent"]["value"]) for t in targets]
+        y0 = np.log([initial_value(f, t, start) for f, t in zip(forms, targets)]
                     + [start.get(k, entry["material"][k]) for k in MATERIAL])
         y, r, history = gauss_newton(evaluate, y0, u_truth)
         effect_norm = float(np.linalg.norm(self.residual(u_truth, u_none)))
@@ -176,11 +184,20 @@ def gauss_newton(evaluate, y, start):
     return y, r, history
 
 
+def initial_value(form, target, start):
+    """The start of a form's q: `start`'s value of the replaced effect's
+    candidate, else its equivalent; a regional variation (EXTENDS) starts
+    at EXTENSION_START times that."""
+    q = start.get(target["candidate"], target["q_equivalent"]["value"])
+    return q * EXTENSION_START if getattr(form, "EXTENDS", None) else q
+
+
 def results(targets, forms, y, history, common):
     """Per candidate form: its q*, its equivalent (none for another form of
-    the physics), the figures `common` to the fit and its column of the
-    history ([q, ||r||] per step); "joint" for a pair."""
-    if len(targets) > 1:
+    the physics or a regional variation), the figures `common` to the fit
+    and its column of the history ([q, ||r||] per step); "joint" when
+    several forms are fitted together."""
+    if len(forms) > 1:
         common = {**common, "joint": [f.CANDIDATE for f in forms]}
     out = {}
     for i, (t, f) in enumerate(zip(targets, forms)):
@@ -220,15 +237,16 @@ def parse_args():
     ap.add_argument("--folder", default=None, help="folder of manifest.json (default: by --set)")
     ap.add_argument("--out", default=None, help="output file (default: pseudo_true.json beside the manifest; "
                                                 "one process per file)")
+    allowed = ", ".join(f"{physics_of_form(n)}={n}" for n in ALTERNATIVE_FORMS)
     ap.add_argument("--form", default=None, metavar="PHYSICS=FORM",
-                    help="replace the effects of PHYSICS by its other form FORM (" + ", ".join(
-                        f"{f.PHYSICS}={n}" for n, f in OTHER_FORMS.items()) + "); stored under the "
+                    help=f"replace the effects of PHYSICS by its alternative form FORM ({allowed}; a '+' "
+                    "joins a regional variation to the candidate, fitted jointly); stored under the "
                     "recording's other_forms.FORM")
     a = ap.parse_args()
     if a.form is not None:
         physics, _, form = a.form.partition("=")
-        if form not in OTHER_FORMS or OTHER_FORMS[form].PHYSICS != physics:
-            ap.error(f"--form {a.form}: allowed: " + ", ".join(f"{f.PHYSICS}={n}" for n, f in OTHER_FORMS.items()))
+        if form not in ALTERNATIVE_FORMS or physics_of_form(form) != physics:
+            ap.error(f"--form {a.form}: allowed: {allowed}")
         a.form = (physics, form)
     return a
 

@@ -35,8 +35,11 @@ def rows_from_json(path):
 
 
 def parse_intervals(text):
-    """[(value, lo, hi)] of a table cell "v [lo, hi]; v [lo, hi]" ("-": [])."""
+    """[(value, lo, hi)] of a table cell "v [lo, hi]; v [lo, hi]" ("-": []);
+    a regional variation's interval in parentheses after its form's is not
+    one of them."""
     number = r"([-+0-9.eE]+|-)"
+    text = re.sub(r"\([^)]*\)", "", text)
     found = re.findall(number + r"\s*\[" + number + r",\s*" + number + r"\]", text)
     return [tuple(None if x == "-" else float(x) for x in f) for f in found]
 
@@ -75,9 +78,11 @@ def rescored(row, entry, pseudo):
         params = {e["q_equivalent"]["parameter"]: {"value": v, "interval95": [lo, hi]}
                   for e, (v, lo, hi) in zip(effects, row["intervals"])}
         forms = None
-    else:
-        params = {c["parameter"]: {"value": c["fitted"], "interval95": c["interval95"]} for c in row["coverage"]}
-        forms = {c["candidate"]: {"term": c.get("form", c["candidate"]), "parameter": c["parameter"]}
+    else:   # every parameter of the named forms, their regional variations' too
+        params = {x["parameter"]: {"value": x["fitted"], "interval95": x["interval95"]}
+                  for c in row["coverage"] for x in [c, *c.get("extensions", [])]}
+        forms = {c["candidate"]: {"term": c.get("form", c["candidate"]), "parameter": c["parameter"],
+                                  "extension_parameters": [x["parameter"] for x in c.get("extensions", [])]}
                  for c in row["coverage"]}
     out["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
     out["truth_forms"] = truth_forms(entry)
@@ -206,6 +211,17 @@ def selftest():
                           "coverage": []}, {"hidden": ["suspensory_ligament"], "hidden_label": "suspensory_ligament",
                                             "strength_class": "weak", "effects": []}, {})
         assert cable["forms"] == {"suspensory_ligament": "suspensory_cables"}, cable
+        # a skin named with its upper-pole variation, from summary.json: both intervals against both values
+        skin_entry = {"hidden": ["skin"], "hidden_label": "skin", "strength_class": "strong",
+                      "effects": [eff("skin", "skin.mu", 2500.0)]}
+        check = lambda p, v, lo, hi: {"parameter": p, "fitted": v, "interval95": [lo, hi]}
+        skin_row = {"name": "s", "named": ["skin"], "coverage": [{
+            "candidate": "skin", "form": "skin+skin_upper_pole", **check("skin.mu", 2000.0, 1300.0, 3000.0),
+            "extensions": [check("skin_upper_pole.mu", 2700.0, 1400.0, 5400.0)]}]}
+        for upper, inside in ((3000.0, True), (6000.0, False)):
+            pseudo = {"skin+skin_upper_pole": {"skin.mu": 1900.0, "skin_upper_pole.mu": upper}}
+            cov = rescored(skin_row, skin_entry, pseudo)["coverage"][0]
+            assert cov["inside_reference"] is inside and cov["pseudo_true"] == 1900.0, cov
         (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md"}}))
         try:
             benchmark_runs(d / "list.json", root=d)   # "other" has a manifest and no run
@@ -216,6 +232,8 @@ def selftest():
         assert benchmark_runs(d / "list.json", root=d) == [(d / "manifest.json", d / "summary.md"),
                                                           (pooled / "manifest.json", pooled / "summary.md")]
         assert parse_intervals("1.2e-06 [9e-07, 2e-06]; 0.3 [-, 0.5]") == [(1.2e-6, 9e-7, 2e-6), (0.3, None, 0.5)]
+        assert parse_intervals("2e+03 [1e+03, 3e+03] (skin_upper_pole.mu 3e+03 [1e+03, 5e+03])") == [
+            (2e3, 1e3, 3e3)]
     print("selftest passed")
     return 0
 

@@ -93,6 +93,13 @@ def run_one(binary, manifest_dir, entry, out, case, extra, nice, rerun, mpi=None
     return "ran" if rc == 0 else "failed"
 
 
+def emit(text, out=None):
+    """Print a tool's table, and write it to `out` too when given."""
+    print(text, end="")
+    if out:
+        Path(out).write_text(text)
+
+
 def check_runs(parser, runs):
     """Refuse, through parser.error, a --run MANIFEST RUN_DIR pair that is missing or does not exist."""
     if not runs:
@@ -114,12 +121,17 @@ def pseudo_true_recordings(manifest_dir):
 def read_pseudo_true(manifest_dir):
     """{recording: {candidate or form: q*}} from pseudo_true.py's output, {}
     if absent: the candidates' values, and those of another form of a
-    physics (pseudo_true.py --form, "other_forms") under the form's name."""
+    physics (pseudo_true.py --form, "other_forms") under the form's name;
+    a form with regional variations ("skin+skin_upper_pole") has
+    {parameter: q*}, one per term."""
     out = {}
     for n, r in pseudo_true_recordings(manifest_dir).items():
         out[n] = {c: v["value"] for c, v in r.get("candidates", {}).items()}
-        for form in r.get("other_forms", {}).values():
-            out[n].update({c: v["value"] for c, v in form.items()})
+        for name, form in r.get("other_forms", {}).items():
+            if "+" in name:     # a candidate with its regional variations: {parameter: q*}
+                out[n][name] = {v["parameter"]: v["value"] for v in form.values()}
+            else:
+                out[n].update({c: v["value"] for c, v in form.items()})
     return out
 
 
@@ -210,11 +222,14 @@ def forms_of(discovered_forms):
     A physics' form is its base term, with the regional variations that
     extend it joined by '+' (e.g. skin+skin_upper_pole): a form of its own,
     whose parameter is the base's, compared only with that form's
-    pseudo-true value."""
+    pseudo-true value; "extension_parameters" lists the variations' own
+    parameters."""
     forms = {}
     for f in sorted(discovered_forms, key=lambda f: bool(f.get("extends"))):
         if f["physics"] in forms:
-            forms[f["physics"]] = {**forms[f["physics"]], "term": forms[f["physics"]]["term"] + "+" + f["term"]}
+            base = forms[f["physics"]]
+            forms[f["physics"]] = {**base, "term": base["term"] + "+" + f["term"],
+                                   "extension_parameters": base.get("extension_parameters", []) + [f["parameter"]]}
         else:
             forms[f["physics"]] = f
     return forms
@@ -227,28 +242,55 @@ def coverage_rows(entry, named, params, pseudo, forms=None):
     {"value", "interval95"}}). An effect named in another form of its
     physics (`forms` {physics: {"term", "parameter"}}, diagnosis.json
     discovered_forms) has that form's parameter and pseudo-true value, and
-    no equivalent."""
+    no equivalent. A form with regional variations keeps its variations'
+    intervals under "extensions", and is covered only if every parameter's
+    pseudo-true value ({parameter: q*}) is inside its interval."""
     rows = []
     for eff in covered_effects(entry, named):
         q = eff["q_equivalent"]
         form = (forms or {}).get(eff["candidate"], {"term": eff["candidate"], "parameter": q["parameter"]})
         other = form["term"] != eff["candidate"]
-        p = params.get(form["parameter"])
-        lo, hi = (p or {}).get("interval95", [None, None])
-        covers = lambda v: None if lo is None or hi is None or v is None else bool(lo <= v <= hi)
-        ref = pseudo.get(form["term"])
+        ref, extensions = reference_of(form, pseudo.get(form["term"]), params)
         if other and ref is None:
             q = {**q, "value": None}          # no reference for the other form yet
+        base = interval_check(form["parameter"], ref if ref is not None else q["value"], params.get(form["parameter"]))
         rows.append({"candidate": eff["candidate"], "parameter": form["parameter"], "form": form["term"],
                      "truth": q["value"], "approximate": bool(q.get("approximate")),
-                     "fitted": (p or {}).get("value"), "interval95": [lo, hi],
-                     "inside": covers(q["value"]), "pseudo_true": ref,
-                     "reference": ref if ref is not None else q["value"],
+                     "fitted": base["fitted"], "interval95": base["interval95"],
+                     "inside": interval_check(form["parameter"], q["value"], params.get(form["parameter"]))["inside"],
+                     "pseudo_true": ref, "reference": base["reference"],
                      "reference_kind": "pseudo-true" if ref is not None else "equivalent",
-                     "inside_reference": covers(ref if ref is not None else q["value"]),
+                     "inside_reference": None if base["inside"] is None
+                     else base["inside"] and all(x["inside"] for x in extensions),
+                     "extensions": extensions,
                      # named in another form of the physics without its pseudo-true value yet
                      "other_form": other and ref is None})
     return rows
+
+
+def reference_of(form, ref, params):
+    """(the pseudo-true value of the form's parameter or None, the checks of
+    its variations' parameters): `ref` is q* or, for a form with regional
+    variations, {parameter: q*}, which counts only if every variation's
+    interval is known."""
+    checks = [interval_check(x, (ref or {}).get(x) if isinstance(ref, dict) else None, params.get(x))
+              for x in form.get("extension_parameters", [])]
+    if not isinstance(ref, dict):
+        return ref, checks
+    if set(ref) != {form["parameter"], *form.get("extension_parameters", [])} or any(
+            c["inside"] is None for c in checks):
+        return None, checks
+    return ref[form["parameter"]], checks
+
+
+def interval_check(parameter, reference, fitted):
+    """{parameter, reference, fitted, interval95, inside}: is `reference`
+    inside the 95 % interval of `fitted` ({"value", "interval95"}; None:
+    unknown)?"""
+    lo, hi = (fitted or {}).get("interval95", [None, None])
+    inside = None if lo is None or hi is None or reference is None else bool(lo <= reference <= hi)
+    return {"parameter": parameter, "reference": reference, "fitted": (fitted or {}).get("value"),
+            "interval95": [lo, hi], "inside": inside}
 
 
 def ratio(a, b):
@@ -363,8 +405,12 @@ def markdown(s, rows, command):
         if r is None:
             continue
         cov = "; ".join(fmt(x['truth']) for x in r["coverage"]) or "-"
-        pst = "; ".join(fmt(x.get("pseudo_true")) for x in r["coverage"]) or "-"
+        pst = "; ".join(fmt(x.get("pseudo_true")) + "".join(f" ({e['parameter']} {fmt(e['reference'])})"
+                                                            for e in x.get("extensions", []) if e["reference"])
+                        for x in r["coverage"]) or "-"
         fit = "; ".join(f"{fmt(x['fitted'])} [{fmt(x['interval95'][0])}, {fmt(x['interval95'][1])}]"
+                        + "".join(f" ({e['parameter']} {fmt(e['fitted'])} [{fmt(e['interval95'][0])}, "
+                                  f"{fmt(e['interval95'][1])}])" for e in x.get("extensions", []))
                         for x in r["coverage"]) or "-"
         named = "failed" if r["named"] is None else ("+".join(r["named"]) or "none")
         if r["named"] and r.get("named_forms") and r["named_forms"] != r["named"]:
@@ -571,6 +617,21 @@ def selftest():
     if not (row["form"] == "skin+skin_upper_pole" and row["parameter"] == "skin.mu"
             and row["inside_reference"] is None and row["other_form"]):
         bad["skin with its regional variation"] = row
+    # ... with its pseudo-true values: covered only if the variation's value is inside its interval too
+    params["skin_upper_pole.mu"] = {"value": 3000.0, "interval95": [1500.0, 6000.0]}
+    joint = {"skin+skin_upper_pole": {"skin.mu": 2600.0, "skin_upper_pole.mu": 5000.0}}
+    row = coverage_rows(entry, ["skin"], params, joint, forms)[0]
+    if not (row["inside_reference"] is True and row["pseudo_true"] == 2600.0 and not row["other_form"]
+            and row["extensions"][0]["inside"] is True):
+        bad["skin with its regional variation, inside"] = row
+    joint["skin+skin_upper_pole"]["skin_upper_pole.mu"] = 7000.0
+    row = coverage_rows(entry, ["skin"], params, joint, forms)[0]
+    if not (row["inside_reference"] is False and row["reference_kind"] == "pseudo-true"):
+        bad["skin with its regional variation, the variation outside"] = row
+    del params["skin_upper_pole.mu"]          # the variation's interval unknown: no reference
+    row = coverage_rows(entry, ["skin"], params, joint, forms)[0]
+    if not (row["inside_reference"] is None and row["other_form"]):
+        bad["skin with its regional variation, its interval unknown"] = row
     # forms: a cable truth named as cables, a spring truth named as cables, a false term not counted
     rows = [{"hidden": ["suspensory_ligament"], "forms": {"suspensory_ligament": "suspensory_cables"},
              "truth_forms": truth_forms({"effects": [{"candidate": "suspensory_ligament",

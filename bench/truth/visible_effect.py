@@ -25,7 +25,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import check_runs, pseudo_true_recordings
+from run_diagnose import check_runs, emit, pseudo_true_recordings
 
 
 def term_effect(dia, physics):
@@ -131,10 +131,7 @@ def main(argv=None):
         return 0
     check_runs(ap, a.run)
     rows = [r for manifest, run_dir in a.run for r in rows_of_run(manifest, run_dir)]
-    text = markdown(rows)
-    print(text, end="")
-    if a.out:
-        Path(a.out).write_text(text)
+    emit(markdown(rows), a.out)
     return 0
 
 

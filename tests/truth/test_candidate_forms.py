@@ -21,12 +21,16 @@ candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
      stretch diag(l1, 1, l2) in axes turned 30 deg about y: taut (l2 above
      the natural width n(l1)), wrinkled (W_s(l1, n(l1))), slack (l1 <= 1: 0),
      A the base's area;
+   - upper-pole skin (a regional variation, EXTENSIONS), u = e X:
+     E = t_s W A_skin(Z > 0), half the skin's area;
 2. the pseudo-true value of a truth inside the candidate's family is its
    own value: a smooth base bed with a flat shape (b = 0) is the uniform bed,
    so q* must equal its compliance, with nothing left unexplained, from a
    start a factor 2.5 away; and jointly, the same bed with the skin
    candidate's own form: both values back from starts a factor 2.5 and 0.5
-   away;
+   away; and the skin with its upper-pole variation
+   (--form skin=skin+skin_upper_pole) of a truth made of those two terms:
+   both values back from starts a factor 0.5 and 0.5 x 0.5 away;
 3. a recording whose fit meets a posture the truth cannot solve is skipped
    and reported, and the others are still computed and stored.
 
@@ -41,8 +45,9 @@ sys.path.insert(0, str(Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 import numpy as np  # noqa: E402
 
 from forms_truth import chest_contact, tissue  # noqa: E402
-from forms_truth.candidate_forms import CANDIDATE_FORMS, D_A, LOBE, OTHER_FORMS, R_G, T_S  # noqa: E402
+from forms_truth.candidate_forms import CANDIDATE_FORMS, D_A, EXTENSIONS, LOBE, OTHER_FORMS, R_G, T_S  # noqa: E402
 from forms_truth.gland_ellipsoid import core_volume  # noqa: E402
+import problem  # noqa: E402
 from pseudo_true import Fitter, compute_each  # noqa: E402
 from solver import SolveError  # noqa: E402
 
@@ -139,6 +144,10 @@ def tension_field_skin(fitter):
     area_skin = ctx.integrate(ctx.constant(1.0) * ctx.ds("skin"))
     check("skin, equibiaxial (taut)", energy(ctx, skin, lambda x: e * x),
           T_S * membrane_w(q, 1 + e, 1 + e) * area_skin, 1e-6)
+    upper = EXTENSIONS["skin_upper_pole"].Term(ctx, {}, None)
+    upper.set_strength(q)
+    check("upper-pole skin, equibiaxial (taut)", energy(ctx, upper, lambda x: e * x),
+          T_S * membrane_w(q, 1 + e, 1 + e) * area_skin / 2, 1e-6)
     on_base = T_S * skin.density * ctx.ds("base")
     area_base = ctx.integrate(ctx.constant(1.0) * ctx.ds("base"))
     n = natural_width(q, 1.1)
@@ -189,6 +198,51 @@ def joint_pseudo_true_of_own_family(fitter):
     print(f"unexplained share {res['skin']['unexplained_share']:.2e}, history {res['skin']['history']}")
 
 
+class SkinWithStifferUpperPole:
+    """A truth inside the family skin+skin_upper_pole: the skin form (q) and
+    its upper-pole variation (pattern upper_ratio x q), one hidden effect."""
+    NAME = "test:skin_with_stiffer_upper_pole"
+    REPLACES_FIXED_BASE = False
+
+    @staticmethod
+    def structure(pattern):
+        return ()
+
+    def __init__(self, ctx, pattern=None, tissue=None):
+        self.skin = CANDIDATE_FORMS["skin"].Term(ctx, {}, None)
+        self.upper = EXTENSIONS["skin_upper_pole"].Term(ctx, {}, None)
+        self.energy = self.skin.energy + self.upper.energy
+        self.ratio = 1.0
+
+    def set_pattern(self, pattern):
+        self.ratio = pattern["upper_ratio"]
+
+    def set_strength(self, q):
+        self.skin.set_strength(q)
+        self.upper.set_strength(self.ratio * q)
+
+
+SkinWithStifferUpperPole.Term = SkinWithStifferUpperPole
+
+
+def skin_with_its_upper_pole_of_own_family(fitter):
+    problem.MODULES[SkinWithStifferUpperPole.NAME] = SkinWithStifferUpperPole
+    q_skin, ratio = 1500.0, 2.0
+    entry = {"material": {"mu": 500.0, "lambda": 2000.0, "rho": 970.0},
+             "postures": [{"name": "standing", "theta_deg": 0.0}, {"name": "supine", "theta_deg": 90.0}],
+             "effects": [{"model": SkinWithStifferUpperPole.NAME, "candidate": "skin",
+                          "pattern": {"upper_ratio": ratio}, "strength": {"value": q_skin},
+                          "q_equivalent": {"parameter": "skin.mu", "value": q_skin}}]}
+    res = fitter.fit(entry, start={"skin": 0.5 * q_skin}, form=("skin", "skin+skin_upper_pole"))
+    check("skin+skin_upper_pole, the skin (from 0.5x)", res["skin"]["value"], q_skin, 1e-3)
+    check("skin+skin_upper_pole, the upper pole (from 0.125x)", res["skin_upper_pole"]["value"],
+          ratio * q_skin, 1e-3)
+    if not (res["skin"]["unexplained_share"] < 1e-3 and res["skin_upper_pole"]["parameter"] == "skin_upper_pole.mu"
+            and res["skin_upper_pole"]["equivalent"] is None and res["skin"]["parameter"] == "skin.mu"):
+        failures.append("skin+skin_upper_pole: unexplained share, parameter or equivalent")
+    print(f"unexplained share {res['skin']['unexplained_share']:.2e}, history {res['skin_upper_pole']['history']}")
+
+
 def a_failed_fit_skips_only_its_recording():
     def compute_one(name, entry):
         if name == "b":
@@ -207,6 +261,7 @@ if __name__ == "__main__":
     tension_field_skin(f)
     pseudo_true_of_own_family(f)
     joint_pseudo_true_of_own_family(f)
+    skin_with_its_upper_pole_of_own_family(f)
     if failures:
         print(f"FAILED: {failures}")
         sys.exit(1)

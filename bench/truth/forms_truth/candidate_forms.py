@@ -21,6 +21,10 @@ recording.
                           neo-Hookean membrane of forms/skin.py, mu_s = q,
                           lambda_s = q (keep_ratio, default ratio 1),
                           t_s = 1.5 mm
+    skin_upper_pole:      E = int_skin [Z > 0] t_s W_s dA,  mu_u = lambda_u = q
+                          (a regional variation that extends skin: the
+                          form skin+skin_upper_pole is the two together,
+                          the upper pole carrying both terms' energies)
 """
 import math
 
@@ -161,6 +165,20 @@ class TensionFieldSkin(_Form):
         self.energy = T_S * self.density * ctx.ds("skin")                 # int_skin t_s W_s dA
 
 
+class UpperPoleSkin(_Form):
+    NAME = "candidate:skin_upper_pole"
+    CANDIDATE = "skin_upper_pole"
+    PHYSICS = "skin"
+    PARAMETER = "skin_upper_pole.mu"
+    EXTENDS = "skin"
+
+    def __init__(self, ctx, pattern=None, tissue=None):
+        super().__init__(ctx, self.PARAMETER)
+        upper = ufl.conditional(ufl.gt(ctx.X[2], 0.0), 1.0, 0.0)
+        self.density = tension_field_density(ctx, self.q, self.q)       # lambda_u = mu_u = q
+        self.energy = T_S * upper * self.density * ctx.ds("skin")         # int_skin [Z > 0] t_s W_s dA
+
+
 def _module(cls):
     """The class itself serves as the module: NAME, CANDIDATE, structure,
     REPLACES_FIXED_BASE and Term."""
@@ -172,3 +190,16 @@ CANDIDATE_FORMS = {c.CANDIDATE: _module(c) for c in (UniformBed, SharpCore, Uppe
                                                          TensionFieldSkin)}
 # Other forms of a candidate's physics (pseudo_true.py --form PHYSICS=FORM).
 OTHER_FORMS = {c.CANDIDATE: _module(c) for c in (UpperPoleCables, BuriedLobe)}
+# Regional variations that extend a candidate (its form joined by '+').
+EXTENSIONS = {c.CANDIDATE: _module(c) for c in (UpperPoleSkin,)}
+# The forms that can replace a physics' candidate in a pseudo-true fit, by
+# name: another form alone, or the candidate with a regional variation
+# ("skin+skin_upper_pole"), their values fitted jointly.
+ALTERNATIVE_FORMS = {**{n: [m] for n, m in OTHER_FORMS.items()},
+                     **{f"{m.EXTENDS}+{n}": [CANDIDATE_FORMS[m.EXTENDS], m] for n, m in EXTENSIONS.items()}}
+
+
+def physics_of_form(name):
+    """The physics an ALTERNATIVE_FORMS entry stands for."""
+    first = ALTERNATIVE_FORMS[name][0]
+    return getattr(first, "PHYSICS", first.CANDIDATE)
