@@ -25,7 +25,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-from run_diagnose import HERE, coverage_rows, covered_effects, markdown, read_pseudo_true, summarize, truth_forms, family_of_form
+from run_diagnose import (HERE, coverage_rows, covered_effects, family_of_form, markdown, pseudo_true_of_named,
+                          pseudo_true_recordings, summarize, truth_forms)
 
 ROUNDING = 5e-3     # relative half-width of a 3-significant-digit number's last digit
 
@@ -65,10 +66,11 @@ def rows_from_markdown(path):
     return rows
 
 
-def rescored(row, entry, pseudo):
+def rescored(row, entry, record):
     """`row` with hidden, peak and coverage from the manifest `entry` and the
-    pseudo-true values; a markdown row's intervals map to the named effects
-    in manifest order (the order run_diagnose.py printed them in)."""
+    recording's pseudo_true.json entry `record`; a markdown row's intervals
+    map to the named effects in manifest order (the order run_diagnose.py
+    printed them in)."""
     out = {**row, "hidden": sorted(entry["hidden"]), "hidden_label": entry["hidden_label"],
            "class": entry["strength_class"], "peak_change_mm": entry.get("peak_change_mm")}
     if row["named"] is None:
@@ -84,7 +86,7 @@ def rescored(row, entry, pseudo):
         forms = {c["candidate"]: {"term": c.get("form", c["candidate"]), "parameter": c["parameter"],
                                   "extension_parameters": [x["parameter"] for x in c.get("extensions", [])]}
                  for c in row["coverage"]}
-    out["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
+    out["coverage"] = coverage_rows(entry, row["named"], params, pseudo_true_of_named(record, forms), forms)
     out["truth_forms"] = truth_forms(entry)
     if "forms" not in row:   # a run before the forms column: the forms it named, by their physics
         family = family_of_form()
@@ -102,13 +104,13 @@ def borderline(rows):
 def rescored_rows(manifest_path, summary_path):
     """The rows of one run, rescored against its set's pseudo-true values."""
     manifest = json.loads(manifest_path.read_text())["recordings"]
-    pseudo = read_pseudo_true(manifest_path.parent)
+    records = pseudo_true_recordings(manifest_path.parent)
     source = rows_from_markdown if summary_path.suffix == ".md" else rows_from_json
     rows = []
     for row in source(summary_path):
         if row["name"] not in manifest:
             sys.exit(f"rescore.py: {row['name']} of {summary_path} is not in {manifest_path}")
-        rows.append(rescored(row, manifest[row["name"]], pseudo.get(row["name"], {})))
+        rows.append(rescored(row, manifest[row["name"]], records.get(row["name"], {})))
     return rows
 
 
@@ -219,8 +221,10 @@ def selftest():
             "candidate": "skin", "form": "skin+skin_upper_pole", **check("skin.mu", 2000.0, 1300.0, 3000.0),
             "extensions": [check("skin_upper_pole.mu", 2700.0, 1400.0, 5400.0)]}]}
         for upper, inside in ((3000.0, True), (6000.0, False)):
-            pseudo = {"skin+skin_upper_pole": {"skin.mu": 1900.0, "skin_upper_pole.mu": upper}}
-            cov = rescored(skin_row, skin_entry, pseudo)["coverage"][0]
+            record = {"candidates": {"skin": {"value": 2500.0}}, "other_forms": {"skin+skin_upper_pole": {
+                "skin": {"parameter": "skin.mu", "value": 1900.0},
+                "skin_upper_pole": {"parameter": "skin_upper_pole.mu", "value": upper}}}}
+            cov = rescored(skin_row, skin_entry, record)["coverage"][0]
             assert cov["inside_reference"] is inside and cov["pseudo_true"] == 1900.0, cov
         (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md"}}))
         try:

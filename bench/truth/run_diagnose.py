@@ -119,27 +119,38 @@ def pseudo_true_recordings(manifest_dir):
 
 
 def read_pseudo_true(manifest_dir):
-    """{recording: {candidate or form: q*}} from pseudo_true.py's output, {}
-    if absent: the candidates' values, and those of another form of a
-    physics (pseudo_true.py --form, "other_forms") under the form's name;
-    a form with regional variations ("skin+skin_upper_pole") has
-    {parameter: q*}, one per term."""
-    out = {}
-    for n, r in pseudo_true_recordings(manifest_dir).items():
-        out[n] = {c: v["value"] for c, v in r.get("candidates", {}).items()}
-        for name, form in r.get("other_forms", {}).items():
-            if "+" in name:     # a candidate with its regional variations: {parameter: q*}
-                out[n][name] = {v["parameter"]: v["value"] for v in form.values()}
-            else:
-                out[n].update({c: v["value"] for c, v in form.items()})
+    """{recording: {candidate: q*}} of the candidates' joint fits in
+    pseudo_true.py's output, {} if absent (the alternative forms' fits:
+    pseudo_true_of_named)."""
+    return {n: pseudo_true_of_named(r, None) for n, r in pseudo_true_recordings(manifest_dir).items()}
+
+
+def pseudo_true_of_named(record, forms):
+    """{candidate or form: q*} of a recording's pseudo_true.json entry for
+    the forms the diagnosis named (`forms` {physics: {"term"}}): the
+    candidates' joint fit, except where an alternative form was named that
+    has a fit of its own (pseudo_true.py --form, "other_forms"): that
+    form's value, and when it is the only one, that joint fit's values of
+    the other candidates too. A form with regional variations
+    ("skin+skin_upper_pole") maps to {parameter: q*}, one per term."""
+    out = {c: v["value"] for c, v in (record or {}).get("candidates", {}).items()}
+    fits = (record or {}).get("other_forms", {})
+    named = [f["term"] for f in (forms or {}).values() if f["term"] in fits]
+    for name in named:
+        own = name.split("+")
+        fit = fits[name]
+        out[name] = ({fit[t]["parameter"]: fit[t]["value"] for t in own} if len(own) > 1
+                     else fit[name]["value"])
+        if len(named) == 1:
+            out.update({t: v["value"] for t, v in fit.items() if t not in own})
     return out
 
 
-def read_result(out, entry, pseudo=None):
+def read_result(out, entry, record=None):
     """One row: hidden, named, intervals, time; None when not run yet. The
     reference q of a discovery is its pseudo-true value where pseudo_true.py
-    computed one (`pseudo`: {candidate: q*}), else the manifest's equivalent."""
-    pseudo = pseudo or {}
+    computed one (`record`: the recording's pseudo_true.json entry, read
+    by pseudo_true_of_named), else the manifest's equivalent."""
     d = out / entry["name"]
     run = d / "run.json"
     if not run.exists():
@@ -162,7 +173,7 @@ def read_result(out, entry, pseudo=None):
     row["verdict"] = dia.get("verdict")
     params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
-    row["coverage"] = coverage_rows(entry, row["named"], params, pseudo, forms)
+    row["coverage"] = coverage_rows(entry, row["named"], params, pseudo_true_of_named(record, forms), forms)
     return row
 
 
@@ -484,7 +495,7 @@ def main(argv=None):
         sys.exit(f"run_diagnose.py: no manifest {manifest_path} (generate.py writes it)")
     manifest = json.loads(manifest_path.read_text())
     entries = select(manifest, a.only, a.classes, a.limit)
-    pseudo = read_pseudo_true(manifest_path.parent)
+    records = pseudo_true_recordings(manifest_path.parent)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     if not a.summarize_only:
@@ -497,7 +508,7 @@ def main(argv=None):
         def run_and_print(e):
             state = run_one(binary, manifest_path.parent, e, out, a.case, shlex.split(a.extra), nice,
                             a.rerun, mpi)
-            row = read_result(out, e, pseudo.get(e["name"]))
+            row = read_result(out, e, records.get(e["name"]))
             named = "-" if row is None or row["named"] is None else ("+".join(row["named"]) or "none")
             print(f"{e['name']:<40} {state:<8} hidden {e['hidden_label']:<35} named {named:<30} "
                   f"{'' if row is None else format(row['seconds'], '.1f') + ' s'}", flush=True)
@@ -505,7 +516,7 @@ def main(argv=None):
         # --jobs N: N diagnoses at once (independent processes), in manifest order.
         with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
             list(pool.map(run_and_print, entries))
-    rows = [read_result(out, e, pseudo.get(e["name"])) for e in entries]
+    rows = [read_result(out, e, records.get(e["name"])) for e in entries]
     scored = [r for r in rows if r is not None]
     summary = summarize(scored)
     command = "python3 bench/truth/run_diagnose.py " + " ".join(shlex.quote(x) for x in (argv or sys.argv[1:]))
@@ -632,6 +643,17 @@ def selftest():
     row = coverage_rows(entry, ["skin"], params, joint, forms)[0]
     if not (row["inside_reference"] is None and row["other_form"]):
         bad["skin with its regional variation, its interval unknown"] = row
+    # a pair's references come from the fit of the forms named: the springs' joint fit, or the cables'
+    record = {"candidates": {"skin": {"value": 3000.0}, "suspensory_ligament": {"value": 4000.0}},
+              "other_forms": {"suspensory_cables": {"skin": {"parameter": "skin.mu", "value": 2000.0},
+                                                    "suspensory_cables": {"parameter": "cables.k", "value": 6000.0}}}}
+    springs = pseudo_true_of_named(record, {"skin": {"term": "skin"},
+                                            "suspensory_ligament": {"term": "suspensory_ligament"}})
+    cables = pseudo_true_of_named(record, {"skin": {"term": "skin"},
+                                           "suspensory_ligament": {"term": "suspensory_cables"}})
+    if springs != {"skin": 3000.0, "suspensory_ligament": 4000.0} or (cables["skin"], cables["suspensory_cables"]) \
+            != (2000.0, 6000.0):
+        bad["pseudo-true of the forms named"] = (springs, cables)
     # forms: a cable truth named as cables, a spring truth named as cables, a false term not counted
     rows = [{"hidden": ["suspensory_ligament"], "forms": {"suspensory_ligament": "suspensory_cables"},
              "truth_forms": truth_forms({"effects": [{"candidate": "suspensory_ligament",
