@@ -264,11 +264,12 @@ def coverage_rows(entry, named, params, pseudo, forms=None):
         ref, extensions = reference_of(form, pseudo.get(form["term"]), params)
         if other and ref is None:
             q = {**q, "value": None}          # no reference for the other form yet
-        base = interval_check(form["parameter"], ref if ref is not None else q["value"], params.get(form["parameter"]))
+        fitted = params.get(form["parameter"])
+        base = interval_check(form["parameter"], ref if ref is not None else q["value"], fitted)
         rows.append({"candidate": eff["candidate"], "parameter": form["parameter"], "form": form["term"],
                      "truth": q["value"], "approximate": bool(q.get("approximate")),
                      "fitted": base["fitted"], "interval95": base["interval95"],
-                     "inside": interval_check(form["parameter"], q["value"], params.get(form["parameter"]))["inside"],
+                     "inside": interval_check(form["parameter"], q["value"], fitted)["inside"],
                      "pseudo_true": ref, "reference": base["reference"],
                      "reference_kind": "pseudo-true" if ref is not None else "equivalent",
                      "inside_reference": None if base["inside"] is None
@@ -284,7 +285,7 @@ def reference_of(form, ref, params):
     its variations' parameters): `ref` is q* or, for a form with regional
     variations, {parameter: q*}, which counts only if every variation's
     interval is known."""
-    checks = [interval_check(x, (ref or {}).get(x) if isinstance(ref, dict) else None, params.get(x))
+    checks = [interval_check(x, ref.get(x) if isinstance(ref, dict) else None, params.get(x))
               for x in form.get("extension_parameters", [])]
     if not isinstance(ref, dict):
         return ref, checks

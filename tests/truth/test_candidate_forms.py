@@ -30,7 +30,7 @@ candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
    candidate's own form: both values back from starts a factor 2.5 and 0.5
    away; and the skin with its upper-pole variation
    (--form skin=skin+skin_upper_pole) of a truth made of those two terms:
-   both values back from starts a factor 0.5 and 0.5 x 0.5 away;
+   both values back from starts a factor 2 and 8 below them;
 3. a recording whose fit meets a posture the truth cannot solve is skipped
    and reported, and the others are still computed and stored.
 

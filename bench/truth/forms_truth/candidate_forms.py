@@ -37,6 +37,11 @@ LOBE = (0.02, 0.035, 0.02)  # m, gland.lobe_height, gland.lobe_radius, gland.lob
 DISC_MIN = 1e-10  # (l1^2 - l2^2)^2 below this: the plain law (forms/skin.py)
 
 
+def upper_pole(X):
+    """[Z > 0], the region of the upper-pole forms."""
+    return ufl.conditional(ufl.gt(X[2], 0.0), 1.0, 0.0)
+
+
 class _Form:
     """Module-like interface of forms_truth effects (problem.Problem)."""
     REPLACES_FIXED_BASE = False
@@ -108,7 +113,7 @@ class UpperPoleSprings(_Form):
 
     def __init__(self, ctx, pattern=None, tissue=None):
         super().__init__(ctx, "ligament.k")
-        w = ufl.conditional(ufl.gt(ctx.X[2], 0.0), 1.0, 0.0)
+        w = upper_pole(ctx.X)
         self.energy = 0.5 * self.q * w * ufl.dot(ctx.u, ctx.u) * ctx.ds("skin")  # q/2 w |u|^2
 
 
@@ -121,7 +126,7 @@ class UpperPoleCables(_Form):
     def __init__(self, ctx, pattern=None, tissue=None):
         super().__init__(ctx, self.PARAMETER)
         X, u = ctx.X, ctx.u
-        w = ufl.conditional(ufl.gt(X[2], 0.0), 1.0, 0.0)
+        w = upper_pole(X)
         A = ufl.as_vector((X[0], 0.0, X[2] + D_A))
         stretch = ufl.max_value(ufl.sqrt(ufl.dot(X + u - A, X + u - A)) - ufl.sqrt(ufl.dot(X - A, X - A)), 0.0)
         self.energy = 0.5 * self.q * w * stretch ** 2 * ctx.ds("skin")     # q/2 w <|x-A| - |X-A|>^2
@@ -174,9 +179,8 @@ class UpperPoleSkin(_Form):
 
     def __init__(self, ctx, pattern=None, tissue=None):
         super().__init__(ctx, self.PARAMETER)
-        upper = ufl.conditional(ufl.gt(ctx.X[2], 0.0), 1.0, 0.0)
         self.density = tension_field_density(ctx, self.q, self.q)       # lambda_u = mu_u = q
-        self.energy = T_S * upper * self.density * ctx.ds("skin")         # int_skin [Z > 0] t_s W_s dA
+        self.energy = T_S * upper_pole(ctx.X) * self.density * ctx.ds("skin")   # int_skin [Z > 0] t_s W_s dA
 
 
 def _module(cls):
