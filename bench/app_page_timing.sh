@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The planning app's two speed targets (issue 21), measured by the browser
+# The planning app's two speed targets, measured by the browser
 # test and asserted here: the page's first view < 1 s (median of 5 loads)
 # and a slider move redrawing the planes < 100 ms (median of 9 moves), from
 # the page's User Timing marks. Runs the whole browser walk once

@@ -2,7 +2,7 @@
 # Fits over MPI sub-communicators: the wall time of
 #  - `calibrate` (default case, --fit mu,c,lambda --algorithm lbfgs: three
 #    finite-difference Jacobian columns per gradient) and
-#  - `diagnose` on independent-truth recordings of the issue-17 benchmark
+#  - `diagnose` on independent-truth recordings of the benchmark (bench/truth)
 #    (4 postures x 2000 points; the control control_01;
 #    --fit mu,lambda: two columns, up to four candidate probes)
 # on 1 rank and on 2 ranks with --ranks-per-case 1 (calibrate: each rank

@@ -10,7 +10,7 @@
 #   TIMEOUT (environment, seconds, default 600): a run longer than this is
 #   stopped and recorded as a timeout (the remaining repeats are skipped).
 #   VARIANT and EXTRA (environment): a label suffix and extra --set options,
-#   for a baseline in the same session, e.g.
+#   for a baseline in the same run, e.g.
 #   VARIANT=_nocoarse EXTRA="--set solver.coarse_start=false".
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time of the scan pipeline (issue 20: "scan to neutral state to three
+# Time of the scan pipeline ("scan to neutral state to three
 # postures takes <= 60 s at default resolution"): a synthetic patient's scan
 # (SHAPE: volume cm3, ptosis, lateral, asymmetry; 0.5 mm noise, 3 holes, the
 # truth meshed at 6 mm) goes scan-model (default mesh size, P1, chest plane

@@ -1,4 +1,4 @@
-"""The composition of the independent-truth benchmark (issue 17).
+"""The composition of the independent-truth benchmark.
 
 Every recording is a dict:
     name, strength_class (control | weak | strong | pair),

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Generate the independent-truth benchmark recordings (issue 17).
+"""Generate the independent-truth benchmark recordings.
 
     python3 bench/truth/generate.py [--list] [--only NAME[,NAME...]] [--redo]
 

@@ -1,7 +1,7 @@
 """Neutral geometry of the truth model: the half spherical cap (x >= 0).
 
 Written for the truth generator only (not shared with src/ or forms/).
-SPEC.md frame: base disc y = 0 of radius R, apex (nipple) at (0, H, 0),
+docs/MODEL.md frame: base disc y = 0 of radius R, apex (nipple) at (0, H, 0),
 symmetry plane x = 0, z cranial. The cap is the part y >= 0 of the ball of
 radius Rs = (R^2 + H^2) / (2 H) centred at (0, H - Rs, 0).
 
@@ -14,7 +14,7 @@ import numpy as np
 from mpi4py import MPI
 from dolfinx.io import gmshio
 
-# Facet tags of the truth mesh (own numbering, same names as SPEC.md).
+# Facet tags of the truth mesh (own numbering, same names as docs/MODEL.md).
 TAGS = {"base": 1, "skin": 2, "symmetry": 3}
 
 

@@ -4,10 +4,9 @@ computed since (pseudo_true.py's file beside the manifest), without
 diagnosing again.
 
     python3 bench/truth/rescore.py --manifest bench/truth/chest_wall/manifest.json \
-        --summary bench/truth/measured/summary_2026-12-04-chest-wall-main-2ranks.md [--out FILE.json]
+        --summary bench/truth/measured/main.json [--out FILE.json]
     python3 bench/truth/rescore.py --pool M1 S1 --pool M2 S2 ...   # several sets scored together
     python3 bench/truth/rescore.py --benchmark bench/truth/benchmark_runs.json   # every set, one run each
-    python3 bench/truth/rescore.py --selftest
 
 --summary is a run's summary.json (run_diagnose.py; full precision) or its
 summary.md (the table's intervals are printed to 3 significant digits: a
@@ -22,7 +21,6 @@ import argparse
 import json
 import re
 import sys
-import tempfile
 from pathlib import Path
 
 from run_diagnose import (HERE, coverage_rows, covered_effects, family_of_form, markdown, pseudo_true_of_named,
@@ -158,10 +156,7 @@ def main(argv=None):
                     help="a further set's manifest and run, scored together with the others (repeatable)")
     ap.add_argument("--benchmark", help="a list of one run per set (benchmark_runs.json): every set pooled")
     ap.add_argument("--out", help="write the rescored summary (JSON) here")
-    ap.add_argument("--selftest", action="store_true")
     a = ap.parse_args(argv)
-    if a.selftest:
-        return selftest()
     if bool(a.manifest) != bool(a.summary) or not (a.manifest or a.pool or a.benchmark):
         ap.error("--manifest and --summary (or --pool MANIFEST SUMMARY, or --benchmark LIST) are required")
     runs = ([(a.manifest, a.summary)] if a.manifest else []) + [tuple(x) for x in a.pool]
@@ -173,72 +168,6 @@ def main(argv=None):
               + ", ".join(f"{n} {c}" for n, c in s["borderline"]))
     if a.out:
         Path(a.out).write_text(json.dumps(s, indent=1) + "\n")
-    return 0
-
-
-def selftest():
-    """A two-recording manifest, a pseudo-true file and a markdown table."""
-    with tempfile.TemporaryDirectory() as tmp:
-        d = Path(tmp)
-        eff = lambda c, p, v: {"candidate": c, "q_equivalent": {"parameter": p, "value": v}}
-        manifest = {"recordings": {
-            "a": {"name": "a", "hidden": ["gland_core"], "hidden_label": "gland_core", "strength_class": "weak",
-                  "effects": [eff("gland_core", "gland.stiffness_ratio", 0.2)]},
-            "c": {"name": "c", "hidden": [], "hidden_label": "none", "strength_class": "control", "effects": []}}}
-        (d / "manifest.json").write_text(json.dumps(manifest))
-        (d / "pseudo_true.json").write_text(json.dumps({"recordings": {"a": {"candidates": {
-            "gland_core": {"value": 0.301}}}}}))
-        (d / "summary.md").write_text(
-            "text\n\n| recording | class | hidden | peak [mm] | named | q equivalent | q pseudo-true | "
-            "fitted [95 % interval] | s |\n|---|---|---|---|---|---|---|---|---|\n"
-            "| a | weak | gland_core | 1 | gland_core | 0.2 | - | 0.25 [0.22, 0.3] | 90.0 |\n"
-            "| c | control | none | 0 | none | - | - | - | 40.0 |\n")
-        s = rescore([(d / "manifest.json", d / "summary.md")])
-        cov = s["rows"][0]["coverage"][0]
-        assert cov["reference_kind"] == "pseudo-true" and cov["inside_reference"] is False, cov
-        assert cov["inside"] is False and s["coverage_reference"]["pseudo_true_of"] == 1, s
-        assert s["borderline"] == [("a", "gland_core")], s["borderline"]
-        assert s["controls"] == {"false_discoveries": 0, "of": 1, "names": []}, s["controls"]
-        pooled = d / "other"
-        pooled.mkdir()
-        (pooled / "manifest.json").write_text(json.dumps({"recordings": {"c2": {**manifest["recordings"]["c"],
-                                                                                 "name": "c2"}}}))
-        (pooled / "summary.md").write_text(
-            "| recording | class | hidden | peak [mm] | named | q equivalent | q pseudo-true | "
-            "fitted [95 % interval] | s |\n|---|---|---|---|---|---|---|---|---|\n"
-            "| c2 | control | none | 0 | none | - | - | - | 50.0 |\n")
-        both = rescore([(d / "manifest.json", d / "summary.md"), (pooled / "manifest.json", pooled / "summary.md")])
-        assert both["controls"]["of"] == 2 and both["single_effect"]["of"] == 1, both["controls"]
-        cable = rescored({"name": "t", "named": ["suspensory_ligament"], "named_forms": ["suspensory_cables"],
-                          "coverage": []}, {"hidden": ["suspensory_ligament"], "hidden_label": "suspensory_ligament",
-                                            "strength_class": "weak", "effects": []}, {})
-        assert cable["forms"] == {"suspensory_ligament": "suspensory_cables"}, cable
-        # a skin named with its upper-pole variation, from summary.json: both intervals against both values
-        skin_entry = {"hidden": ["skin"], "hidden_label": "skin", "strength_class": "strong",
-                      "effects": [eff("skin", "skin.mu", 2500.0)]}
-        check = lambda p, v, lo, hi: {"parameter": p, "fitted": v, "interval95": [lo, hi]}
-        skin_row = {"name": "s", "named": ["skin"], "coverage": [{
-            "candidate": "skin", "form": "skin+skin_upper_pole", **check("skin.mu", 2000.0, 1300.0, 3000.0),
-            "extensions": [check("skin_upper_pole.mu", 2700.0, 1400.0, 5400.0)]}]}
-        for upper, inside in ((3000.0, True), (6000.0, False)):
-            record = {"candidates": {"skin": {"value": 2500.0}}, "other_forms": {"skin+skin_upper_pole": {
-                "skin": {"parameter": "skin.mu", "value": 1900.0},
-                "skin_upper_pole": {"parameter": "skin_upper_pole.mu", "value": upper}}}}
-            cov = rescored(skin_row, skin_entry, record)["coverage"][0]
-            assert cov["inside_reference"] is inside and cov["pseudo_true"] == 1900.0, cov
-        (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md"}}))
-        try:
-            benchmark_runs(d / "list.json", root=d)   # "other" has a manifest and no run
-            raise AssertionError("a list that leaves a set out was accepted")
-        except SystemExit as e:
-            assert "no run of the set(s) other" in str(e), e
-        (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md", "other": "other/summary.md"}}))
-        assert benchmark_runs(d / "list.json", root=d) == [(d / "manifest.json", d / "summary.md"),
-                                                          (pooled / "manifest.json", pooled / "summary.md")]
-        assert parse_intervals("1.2e-06 [9e-07, 2e-06]; 0.3 [-, 0.5]") == [(1.2e-6, 9e-7, 2e-6), (0.3, None, 0.5)]
-        assert parse_intervals("2e+03 [1e+03, 3e+03] (skin_upper_pole.mu 3e+03 [1e+03, 5e+03])") == [
-            (2e3, 1e3, 3e3)]
-    print("selftest passed")
     return 0
 
 

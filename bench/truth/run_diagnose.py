@@ -4,10 +4,9 @@
     python3 bench/truth/run_diagnose.py BUILD_DIR [--only NAME,...] [--classes control,weak,...]
                                         [--limit N] [--out DIR] [--rerun] [--summarize-only]
                                         [--jobs N] [--mpi N [--ranks-per-case K]]
-    python3 bench/truth/run_diagnose.py --selftest
 
 Every recording of bench/truth/manifest.json (or the selected subset) is
-diagnosed with the baseline of issue 17: tissue eq. (5), fixed base, no skin,
+diagnosed with the benchmark's baseline: tissue eq. (5), fixed base, no skin,
 R, H and rho known (from the recording), `--fit mu,lambda`, on the
 diagnosis discretisation of docs/DIAGNOSE.md (P2 at 12 mm):
 
@@ -24,9 +23,10 @@ run again (unless --rerun). Writes OUT/summary.json and OUT/summary.md:
 confusion matrix (hidden -> named), exact verdicts on single-effect
 recordings, false discoveries on the controls, false-discovery rate,
 coverage of the hidden value q by the reported 95 % interval, time per
-diagnosis. Running and scoring need only the standard library; the
-selftest and rescoring runs older than their "forms" field read the
-candidates' families from forms/model.py, and so need UFL (/usr/bin/python3).
+diagnosis. Running and scoring need only the standard library; rescoring
+runs older than their "forms" field (and tests/truth/test_run_diagnose.py)
+read the candidates' families from forms/model.py, and so need UFL
+(/usr/bin/python3).
 """
 import argparse
 import concurrent.futures
@@ -37,7 +37,6 @@ import shlex
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
@@ -50,7 +49,7 @@ BASELINE_SETS = ["base.fixed=true", "terms.base_springs=false", "terms.skin=fals
 # the diagnosis discretisation: P2 with its curved skin at 12 mm (docs/DIAGNOSE.md)
 DISCRETISATION = ["--order", "2", "--mesh-size", "0.012"]
 FIT = "mu,lambda"
-# the issue's targets ("Done when")
+# the benchmark's targets
 TARGET_EXACT, TARGET_COVERAGE, TARGET_MEDIAN_S, MIN_CONTROLS = 0.95, 0.90, 120.0, 12
 
 
@@ -93,36 +92,11 @@ def run_one(binary, manifest_dir, entry, out, case, extra, nice, rerun, mpi=None
     return "ran" if rc == 0 else "failed"
 
 
-def emit(text, out=None):
-    """Print a tool's table, and write it to `out` too when given."""
-    print(text, end="")
-    if out:
-        Path(out).write_text(text)
-
-
-def check_runs(parser, runs):
-    """Refuse, through parser.error, a --run MANIFEST RUN_DIR pair that is missing or does not exist."""
-    if not runs:
-        parser.error("--run MANIFEST RUN_DIR is required (repeatable)")
-    for manifest, run_dir in runs:
-        if not Path(manifest).is_file():
-            parser.error(f"--run: no manifest {manifest}")
-        if not Path(run_dir).is_dir():
-            parser.error(f"--run: no run folder {run_dir}")
-
-
 # -- scoring ---------------------------------------------------------------------
 def pseudo_true_recordings(manifest_dir):
     """The recordings of pseudo_true.py's output beside the manifest, {} if absent."""
     path = manifest_dir / "pseudo_true.json"
     return json.loads(path.read_text())["recordings"] if path.exists() else {}
-
-
-def read_pseudo_true(manifest_dir):
-    """{recording: {candidate: q*}} of the candidates' joint fits in
-    pseudo_true.py's output, {} if absent (the alternative forms' fits:
-    pseudo_true_of_named)."""
-    return {n: pseudo_true_of_named(r, None) for n, r in pseudo_true_recordings(manifest_dir).items()}
 
 
 def pseudo_true_of_named(record, forms):
@@ -449,7 +423,7 @@ def select(manifest, only, classes, limit):
 
 
 def parse_args(argv):
-    ap = argparse.ArgumentParser(description="diagnose the independent-truth recordings (issue 17)")
+    ap = argparse.ArgumentParser(description="diagnose the independent-truth recordings")
     ap.add_argument("build", nargs="?", help="build folder holding breastsim")
     ap.add_argument("--manifest", default=str(HERE / "manifest.json"))
     ap.add_argument("--out", default=str(HERE / "results"))
@@ -468,7 +442,6 @@ def parse_args(argv):
     ap.add_argument("--ranks-per-case", type=int, default=1,
                     help="with --mpi: MPI ranks per forward solve (diagnose --ranks-per-case)")
     ap.add_argument("--summarize-only", action="store_true", help="only score existing results")
-    ap.add_argument("--selftest", action="store_true", help="check runner and scoring with a fake binary")
     ap.add_argument("--expect-exact", action="store_true",
                     help="exit 1 unless every selected recording is diagnosed and named exactly "
                          "(the hidden terms, nothing else)")
@@ -482,15 +455,13 @@ def parse_args(argv):
     if a.mpi < 0 or (a.mpi and (a.ranks_per_case < 1 or a.mpi % a.ranks_per_case)):
         ap.error(f"--mpi {a.mpi} --ranks-per-case {a.ranks_per_case}: need --mpi >= 0 and a "
                  "--ranks-per-case >= 1 that divides it")
-    if not a.selftest and not a.summarize_only and not a.build:
-        ap.error("BUILD_DIR is required (or --summarize-only / --selftest)")
+    if not a.summarize_only and not a.build:
+        ap.error("BUILD_DIR is required (or --summarize-only)")
     return a
 
 
 def main(argv=None):
     a = parse_args(sys.argv[1:] if argv is None else argv)
-    if a.selftest:
-        return selftest()
     manifest_path = Path(a.manifest)
     if not manifest_path.exists():
         sys.exit(f"run_diagnose.py: no manifest {manifest_path} (generate.py writes it)")
@@ -533,149 +504,6 @@ def main(argv=None):
         if wrong:
             print(f"run_diagnose.py: not named exactly: {', '.join(wrong)}")
             return 1
-    return 0
-
-
-# -- self-test: a fake breastsim with hand-made diagnosis outputs ------------------------
-FAKE_BINARY = r'''#!/usr/bin/env python3
-import json, sys, pathlib
-args = sys.argv[1:]
-assert args[:2] == ["-q", "diagnose"], args
-rec = json.loads(pathlib.Path(args[2]).read_text())
-sets = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
-assert sets == ["base.fixed=true", "terms.base_springs=false", "terms.skin=false"], sets
-assert args[args.index("--order") + 1] == "2" and args[args.index("--mesh-size") + 1] == "0.012"
-assert args[args.index("--fit") + 1] == "mu,lambda"
-out = pathlib.Path(args[args.index("--out") + 1]); out.mkdir(parents=True)
-answers = json.loads(pathlib.Path(__file__).with_name("answers.json").read_text())
-discovered, params = answers[rec["truth"]["name"]]
-final = {"parameters": [{"name": "tissue.mu", "unit": "Pa", "value": 410.0, "interval95": [380.0, 440.0]}]
-         + [{"name": n, "unit": "", "value": v, "interval95": iv} for n, v, iv in params],
-         "chi2": 1.0, "dof": 1, "reduced_chi2": 1.0, "postures": []}
-(out / "diagnosis.json").write_text(json.dumps({"format": "breastsim-diagnosis/1", "verdict": "fake",
-    "discovered": discovered, "rounds": [], "final": final, "wall_time_s": 0.1}))
-'''
-
-
-def selftest():
-    """Hand-made diagnoses of five recordings: a clean control, a control with
-    a false base_springs, a weak skin named with q inside its interval, a
-    gland named with an extra term and q outside (its pseudo-true value
-    inside), a pair named in full (its base_springs pseudo-true outside)."""
-    entries = {
-        "c1": ([], []), "c2": ([], []),
-        "s1": (["skin"], [("skin", "skin.mu", 2500.0)]),
-        "g1": (["gland_core"], [("gland_core", "gland.excess", 1.5)]),
-        "p1": (["base_springs", "gland_core"], [("base_springs", "base.compliance", 2e-7),
-                                                ("gland_core", "gland.excess", 1.0)]),
-    }
-    answers = {"c1": [[], []], "c2": [["base_springs"], [["base.compliance", 1e-7, [1e-8, 1e-6]]]],
-               "s1": [["skin"], [["skin.mu", 2600.0, [2000.0, 3000.0]]]],
-               "g1": [["gland_core", "base_springs"], [["gland.excess", 3.0, [2.0, 4.0]],
-                                                       ["base.compliance", 1e-7, [1e-8, 1e-6]]]],
-               "p1": [["gland_core", "base_springs"], [["base.compliance", 2.1e-7, [1e-7, 4e-7]],
-                                                       ["gland.excess", 1.1, [0.5, 2.0]]]]}
-    with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
-        (tmp / "recordings").mkdir()
-        manifest = {"recordings": {}}
-        for name, (hidden, qs) in entries.items():
-            (tmp / "recordings" / f"{name}.json").write_text(json.dumps({"truth": {"name": name}}))
-            cls = "control" if not hidden else ("pair" if len(hidden) == 2 else "weak")
-            manifest["recordings"][name] = {
-                "name": name, "file": f"recordings/{name}.json", "hidden": hidden,
-                "hidden_label": "+".join(hidden) or "none", "strength_class": cls, "peak_change_mm": 1.0,
-                "effects": [{"candidate": c, "q_equivalent": {"parameter": p, "value": v}} for c, p, v in qs]}
-        (tmp / "manifest.json").write_text(json.dumps(manifest))
-        pseudo = {"g1": {"gland_core": 3.5}, "p1": {"base_springs": 5e-7}}    # g1 inside, p1 outside
-        (tmp / "pseudo_true.json").write_text(json.dumps({"recordings": {
-            n: {"candidates": {c: {"value": v} for c, v in cs.items()}} for n, cs in pseudo.items()}}))
-        build = tmp / "build"
-        build.mkdir()
-        (build / "breastsim").write_text(FAKE_BINARY)
-        (build / "breastsim").chmod(0o755)
-        (build / "answers.json").write_text(json.dumps(answers))
-        main([str(build), "--manifest", str(tmp / "manifest.json"), "--out", str(tmp / "out"), "--nice", "-1"])
-        s = json.loads((tmp / "out" / "summary.json").read_text())
-    expect = {("controls", "false_discoveries"): 1, ("controls", "of"): 2,
-              ("single_effect", "exact"): 1, ("single_effect", "of"): 2,
-              ("single_effect", "named_hidden_with_extra"): 1, ("pairs", "exact"): 1,
-              ("false_discovery_rate", "false_terms"): 2, ("false_discovery_rate", "named_terms"): 6,
-              ("coverage", "inside"): 3, ("coverage", "of"): 4,
-              ("coverage_reference", "inside"): 3, ("coverage_reference", "of"): 4,
-              ("coverage_reference", "pseudo_true_inside"): 1, ("coverage_reference", "pseudo_true_of"): 2}
-    bad = {k: (s[k[0]][k[1]], v) for k, v in expect.items() if s[k[0]][k[1]] != v}
-    if s["confusion"]["none"] != {"base_springs": 1, "skin": 0, "suspensory_ligament": 0,
-                                  "gland_core": 0, "none": 1}:
-        bad["confusion.none"] = s["confusion"]["none"]
-    # a tether named in its cable form: that form's parameter and pseudo-true value, no equivalent
-    entry = {"effects": [{"candidate": "suspensory_ligament",
-                          "q_equivalent": {"parameter": "ligament.k", "value": 2000.0, "approximate": True}}]}
-    params = {"cables.k": {"value": 3000.0, "interval95": [2000.0, 4000.0]}}
-    forms = {"suspensory_ligament": {"term": "suspensory_cables", "parameter": "cables.k"}}
-    row = coverage_rows(entry, ["suspensory_ligament"], params, {}, forms)[0]
-    if not (row["parameter"] == "cables.k" and row["inside"] is None and row["other_form"]):
-        bad["other form without pseudo-true"] = row
-    row = coverage_rows(entry, ["suspensory_ligament"], params, {"suspensory_cables": 3500.0}, forms)[0]
-    if not (row["inside_reference"] is True and row["reference_kind"] == "pseudo-true" and not row["other_form"]):
-        bad["other form with pseudo-true"] = row
-    # a skin named with its upper-pole variation: the joint form, the base's parameter, no reference yet
-    forms = forms_of([{"term": "skin_upper_pole", "physics": "skin", "parameter": "skin_upper_pole.mu",
-                       "extends": "skin"},
-                      {"term": "skin", "physics": "skin", "parameter": "skin.mu", "extends": ""}])
-    entry = {"effects": [{"candidate": "skin", "q_equivalent": {"parameter": "skin.mu", "value": 2500.0}}]}
-    params = {"skin.mu": {"value": 2400.0, "interval95": [2000.0, 3000.0]}}
-    row = coverage_rows(entry, ["skin"], params, {"skin": 2600.0}, forms)[0]
-    if not (row["form"] == "skin+skin_upper_pole" and row["parameter"] == "skin.mu"
-            and row["inside_reference"] is None and row["other_form"]):
-        bad["skin with its regional variation"] = row
-    # ... with its pseudo-true values: covered only if the variation's value is inside its interval too
-    params["skin_upper_pole.mu"] = {"value": 3000.0, "interval95": [1500.0, 6000.0]}
-    joint = {"skin+skin_upper_pole": {"skin.mu": 2600.0, "skin_upper_pole.mu": 5000.0}}
-    row = coverage_rows(entry, ["skin"], params, joint, forms)[0]
-    if not (row["inside_reference"] is True and row["pseudo_true"] == 2600.0 and not row["other_form"]
-            and row["extensions"][0]["inside"] is True):
-        bad["skin with its regional variation, inside"] = row
-    joint["skin+skin_upper_pole"]["skin_upper_pole.mu"] = 7000.0
-    row = coverage_rows(entry, ["skin"], params, joint, forms)[0]
-    if not (row["inside_reference"] is False and row["reference_kind"] == "pseudo-true"):
-        bad["skin with its regional variation, the variation outside"] = row
-    del params["skin_upper_pole.mu"]          # the variation's interval unknown: no reference
-    row = coverage_rows(entry, ["skin"], params, joint, forms)[0]
-    if not (row["inside_reference"] is None and row["other_form"]):
-        bad["skin with its regional variation, its interval unknown"] = row
-    # a pair's references come from the fit of the forms named: the springs' joint fit, or the cables'
-    record = {"candidates": {"skin": {"value": 3000.0}, "suspensory_ligament": {"value": 4000.0}},
-              "other_forms": {"suspensory_cables": {"skin": {"parameter": "skin.mu", "value": 2000.0},
-                                                    "suspensory_cables": {"parameter": "cables.k", "value": 6000.0}}}}
-    springs = pseudo_true_of_named(record, {"skin": {"term": "skin"},
-                                            "suspensory_ligament": {"term": "suspensory_ligament"}})
-    cables = pseudo_true_of_named(record, {"skin": {"term": "skin"},
-                                           "suspensory_ligament": {"term": "suspensory_cables"}})
-    if springs != {"skin": 3000.0, "suspensory_ligament": 4000.0} or (cables["skin"], cables["suspensory_cables"]) \
-            != (2000.0, 6000.0):
-        bad["pseudo-true of the forms named"] = (springs, cables)
-    # forms: a cable truth named as cables, a spring truth named as cables, a false term not counted
-    rows = [{"hidden": ["suspensory_ligament"], "forms": {"suspensory_ligament": "suspensory_cables"},
-             "truth_forms": truth_forms({"effects": [{"candidate": "suspensory_ligament",
-                                                      "pattern": {"variant": "cables"}}]})},
-            {"hidden": ["suspensory_ligament"], "forms": {"suspensory_ligament": "suspensory_cables",
-                                                          "skin": "skin"},
-             "truth_forms": {"suspensory_ligament": "suspensory_ligament"}},
-            {"hidden": ["gland_core"], "forms": {"gland_core": "gland_core"}, "truth_forms": {}}]
-    tally = form_tally(rows)
-    if tally != {"by_physics": {"suspensory_ligament": {"suspensory_cables": 2}, "gland_core": {"gland_core": 1}},
-                 "truth_form_named": 1, "truth_form_known": 2}:
-        bad["form tally"] = tally
-    # every form's physics as the forms declare it: one of the physics this benchmark scores
-    family = family_of_form()
-    if (family.get("suspensory_cables") != "suspensory_ligament" or family.get("skin_upper_pole") != "skin"
-            or not set(family.values()) <= set(CANDIDATES)):
-        bad["family of form"] = family
-    if bad:
-        print(f"SELFTEST FAILED: {bad}")
-        return 1
-    print("selftest passed")
     return 0
 
 

@@ -1,7 +1,7 @@
 """Equilibrium of the truth model: minimise the total energy
 Pi(u) = E_tissue + E_gravity + sum E_effects over P2 displacements with
 
-    u_x = 0 on the symmetry face (sliding, SPEC.md),
+    u_x = 0 on the symmetry face (sliding, docs/MODEL.md),
     u = 0 on the base unless an effect replaces the fixed base by springs,
 
 by Newton's method (residual R = dPi/du, Jacobian dR/du, MUMPS via PETSc)

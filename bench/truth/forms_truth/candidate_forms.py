@@ -1,5 +1,5 @@
 """The forms of breastsim's candidate terms, written in the truth code from
-their documented equations (docs/DIAGNOSE.md, SPEC.md, the docstring of
+their documented equations (docs/DIAGNOSE.md, docs/MODEL.md, the docstring of
 forms/skin.py; nothing is imported from forms/), for one purpose: the
 pseudo-true value of a candidate, the value whose solve on the truth's own
 mesh reproduces a hidden effect best (pseudo_true.py). They never make a

@@ -46,5 +46,5 @@ class Context:
 
 
 def neo_hooke_density(F, J, mu, lmbda):
-    """SPEC.md eq. (5): W = mu/2 (tr(F F^T) - 3 - 2 ln J) + lambda/2 (J - 1)^2."""
+    """docs/MODEL.md eq. (5): W = mu/2 (tr(F F^T) - 3 - 2 ln J) + lambda/2 (J - 1)^2."""
     return 0.5 * mu * (ufl.inner(F, F) - 3.0 - 2.0 * ufl.ln(J)) + 0.5 * lmbda * (J - 1.0) ** 2

@@ -2,7 +2,7 @@
 with a smooth (logistic) edge (breastsim's gland_core: a sharp cylinder
 x^2 + z^2 < r_g^2 around the nipple axis).
 
-    E_gland = int_B m chi(X) W(F) dV,   W the tissue density (SPEC.md eq. 5),
+    E_gland = int_B m chi(X) W(F) dV,   W the tissue density (docs/MODEL.md eq. 5),
     chi(X)  = 1 / (1 + exp((rho(X) - 1) / delta)),
     rho(X)^2 = (d_x/a_x)^2 + (d_y'/a_y)^2 + (d_z'/a_z)^2,  d = X - C,
     d_y' = cos(psi) d_y + sin(psi) d_z,  d_z' = -sin(psi) d_y + cos(psi) d_z

@@ -1,4 +1,4 @@
-"""Mass forces in a posture (SPEC.md "Postures"):
+"""Mass forces in a posture (docs/MODEL.md "Postures"):
 
     E_gravity = - int_B rho * load * g_vec . u dV,
     g_vec = -g (cos(theta) e_z + sin(theta) e_y),

@@ -1,4 +1,4 @@
-"""Baseline tissue: compressible neo-Hookean body (SPEC.md eq. 5),
+"""Baseline tissue: compressible neo-Hookean body (docs/MODEL.md eq. 5),
 
     E_tissue = int_B W(F) dV,  W = mu/2 (tr(F F^T) - 3 - 2 ln J) + lambda/2 (J - 1)^2.
 """
