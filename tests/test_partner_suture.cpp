@@ -1,5 +1,5 @@
 // The general tissue-to-tissue suture (forms/tissue_suture.py) and the
-// partner fields behind it (src/model/model/partner_field.hpp): the interpolation matrix
+// partner fields behind it (src/model/partner_field.hpp): the interpolation matrix
 // P against exactly representable fields, Taylor checks of the chain-rule
 // derivatives, and two blocks across a gap whose faces are sewn together.
 // The interpolation, Taylor and refusal tests also run on 2 MPI ranks (ctest

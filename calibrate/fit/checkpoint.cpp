@@ -1,5 +1,7 @@
 #include "checkpoint.hpp"
 #include "errors.hpp"
+#include "input_file.hpp"
+#include "safe_write.hpp"
 #include "log.hpp"
 #include <cmath>
 #include <fmt/format.h>
@@ -27,13 +29,18 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& cp)
   if (file.has_parent_path())
     std::filesystem::create_directories(file.parent_path());
   const auto tmp = file.string() + fmt::format(".tmp-{}", getpid());
+  try
   {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    if (!out)
-      throw std::runtime_error("cannot write checkpoint " + tmp);
+    write_file_nofollow(tmp, j.dump(2) + "\n", Existing::refuse); // a new file, never through a link
+    std::filesystem::rename(tmp, file);
   }
-  std::filesystem::rename(tmp, file);
+  catch (const std::exception& e)
+  {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error(fmt::format("cannot write the checkpoint '{}': {}", file.string(),
+                                         plain_error(e)));
+  }
 }
 
 Checkpoint read_checkpoint(const std::filesystem::path& file, const std::vector<FitParameter>& fit)
@@ -54,7 +61,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file, const std::vector<
   }
   catch (const nlohmann::json::exception& e)
   {
-    throw InputError(fmt::format("--resume: checkpoint '{}' is damaged: {}", file.string(), e.what()));
+    throw InputError(fmt::format("--resume: checkpoint '{}' is damaged: {}", file.string(), plain_error(e)));
   }
   std::vector<std::string> want;
   for (const auto& p : fit)

@@ -1,6 +1,5 @@
 #pragma once
-// Calibration with scans (issue 20 item 3, docs/SCANS.md "Two-scan
-// calibration"): the material parameters p (mu; c where the base springs are
+// Calibration with scans (docs/SCANS.md "Calibration with scans"): the material parameters p (mu; c where the base springs are
 // on) together with the stress-free neutral state, from scans of one breast
 // in two or more postures, in one chest-fixed frame.
 //

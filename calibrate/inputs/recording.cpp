@@ -118,6 +118,10 @@ Recording parse_recording(const nlohmann::json& j, const std::string& source)
     if (!pts.is_array() || pts.size() < 10)
       rd.fail(pre + "points", fmt::format("must be a list of at least 10 points [x, y, z] (has {})",
                                           pts.is_array() ? pts.size() : 0));
+    if (pts.size() > max_recorded_points)
+      rd.fail(pre + "points", fmt::format("holds {} points: allowed at most {} per posture (as "
+                                          "`breastsim record --points`)",
+                                          pts.size(), max_recorded_points));
     for (std::size_t k = 0; k < pts.size(); ++k)
     {
       const Point x = rd.point(pts[k], fmt::format("{}points[{}]", pre, k));

@@ -33,6 +33,8 @@ struct Recording
 };
 
 inline constexpr const char* recording_format = "breastsim-recording/1";
+/// The most points a recorded posture may hold (`record --points` writes at most as many).
+inline constexpr std::size_t max_recorded_points = 1000000;
 
 /// Parse and check a recording document; `source` names it in messages.
 /// Throws InputError naming the key, the value and the allowed range.

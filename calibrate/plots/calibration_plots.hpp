@@ -1,6 +1,6 @@
 #pragma once
 // Pictures of a calibration result folder: the plots of report.json made by
-// src/io/viewer/calibration_plots.py (misfit history, measured vs model per
+// src/viewer/calibration_plots.py (misfit history, measured vs model per
 // measurement) and the breast pictures of the calibrated model made by the
 // picture pipeline of `simulate` (render_pictures on surface_<posture>.json).
 #include <filesystem>

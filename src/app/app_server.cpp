@@ -6,6 +6,7 @@
 #include "plan_api.hpp"
 #include "recording_api.hpp"
 #include "report_api.hpp"
+#include "request_headers.hpp"
 #include "request_pool.hpp"
 #include "scan_upload.hpp"
 #include "static_files.hpp"
@@ -130,6 +131,12 @@ void configure(httplib::Server& server, const ServeOptions& o, const int& port)
                               {"Cache-Control", "no-store"}});
   const bool loopback = !o.host_given || is_loopback(o.host);
   server.set_pre_routing_handler([loopback, &port, o](const httplib::Request& req, httplib::Response& res) {
+    if (auto why = malformed_headers(req))
+    {
+      reply_error(res, 400, *why);
+      res.set_header("Connection", "close");
+      return httplib::Server::HandlerResponse::Handled;
+    }
     if (loopback && !host_header_allowed(req.get_header_value("Host"), port))
     {
       reply_error(res, 403, "this server answers only requests addressed to 127.0.0.1 or localhost");

@@ -1,6 +1,8 @@
 #include "data_folder.hpp"
 #include "errors.hpp"
+#include "input_file.hpp"
 #include "output_target.hpp"
+#include "safe_write.hpp"
 #include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -24,6 +26,9 @@ bool is_same_or_ancestor(const fs::path& p, const fs::path& q)
 
 bool has_marker(const fs::path& dir)
 {
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(dir / data_marker, ec)))
+    return false; // a link is never breastsim's marker
   std::ifstream f(dir / data_marker);
   if (!f)
     return false;
@@ -44,6 +49,13 @@ std::string refusal(const fs::path& dir)
   if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !has_marker(dir))
     return fmt::format("it is not empty and was not created by breastsim serve (no {} marker)",
                        data_marker);
+  for (const char* own : {"jobs", data_marker}) // the server's own entries: never links
+  {
+    const auto st = fs::symlink_status(dir / own, ec);
+    if (fs::is_symlink(st))
+      return fmt::format("its '{}' is {}, which breastsim serve never creates", own,
+                         entry_kind(dir / own));
+  }
   return "";
 }
 } // namespace
@@ -56,12 +68,21 @@ fs::path claim_data_folder(const std::string& given)
   fs::create_directories(dir / "jobs");
   if (!has_marker(dir))
   {
-    std::ofstream f(dir / data_marker);
-    f << nlohmann::json{{"written_by", "breastsim"}, {"format", "breastsim-serve-data"}, {"version", 1}}
-             .dump(2)
-      << "\n";
-    if (!f)
-      throw InputError(fmt::format("--data {}: cannot write the marker {}", dir.string(), data_marker));
+    try
+    {
+      write_file_nofollow(dir / data_marker,
+                          nlohmann::json{{"written_by", "breastsim"},
+                                         {"format", "breastsim-serve-data"},
+                                         {"version", 1}}
+                                  .dump(2)
+                              + "\n",
+                          Existing::refuse);
+    }
+    catch (const std::system_error& e)
+    {
+      throw InputError(fmt::format("--data {}: cannot write the marker {}: {}", dir.string(),
+                                   data_marker, e.code().message()));
+    }
   }
   return dir;
 }

@@ -1,4 +1,5 @@
 #include "http_reply.hpp"
+#include "strict_json.hpp"
 #include "errors.hpp"
 #include <algorithm>
 #include <fmt/format.h>
@@ -70,10 +71,18 @@ nlohmann::json parse_json_body(const httplib::Request& req)
 {
   if (nesting_depth(req.body) > max_depth)
     throw InputError(fmt::format("the request body is nested deeper than {} levels", max_depth));
-  auto j = nlohmann::json::parse(req.body, nullptr, false);
-  if (j.is_discarded())
+  try
+  {
+    return parse_json_strict(req.body);
+  }
+  catch (const DuplicateJsonKey& e)
+  {
+    throw InputError(fmt::format("the request body is ambiguous: {} (give each key once)", e.what()));
+  }
+  catch (const nlohmann::json::exception&)
+  {
     throw InputError("the request body is not valid JSON");
-  return j;
+  }
 }
 
 void with_json_body(const httplib::Request& req, httplib::Response& res,

@@ -17,7 +17,7 @@ struct ServeOptions
   std::size_t max_body = 1 << 20;   ///< largest request body [bytes]
   std::size_t max_upload = 64u << 20; ///< largest scan upload (POST /api/scans) [bytes]
   std::size_t max_queued = 64;      ///< jobs waiting at most; more are refused (429)
-  int http_threads = 8;             ///< threads answering requests
+  int http_threads = 64;            ///< threads answering requests (a slow client holds one)
   std::string program;              ///< this program (/proc/self/exe), run for each job
 };
 

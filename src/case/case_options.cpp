@@ -22,7 +22,7 @@ void CaseOptions::declare(std::vector<KeyInfo>& keys)
                          "and prone: -90 deg)"});
   keys.push_back(KeyInfo{"postures.theta_deg", KeyType::number_list, "deg", d.posture_angles_deg,
                          -180, 180, false, {},
-                         "further postures by chest angle theta (SPEC.md), in [-180, 180]"});
+                         "further postures by chest angle theta (docs/MODEL.md), in [-180, 180]"});
   keys.push_back(choice_key("tissue.formulation",
                             d.formulation == TissueFormulation::mixed ? "mixed" : "displacement",
                             {"displacement", "mixed"},

@@ -2,6 +2,7 @@
 #include "strings.hpp"
 #include "breastsim_registry.hpp"
 #include "errors.hpp"
+#include "input_file.hpp"
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -205,7 +206,7 @@ double parse_double(const std::string& key, const std::string& s)
     pos = 0;
   }
   if (pos != s.size() || s.empty())
-    throw InputError(fmt::format("key '{}' = \"{}\" is not a number", key, s));
+    throw InputError(fmt::format("key '{}' = \"{}\" is not a number", key, shorten(s)));
   return x;
 }
 
@@ -278,12 +279,7 @@ void check_user_mesh_keys(const Config& c)
 
 Config Config::from_file(const std::filesystem::path& path)
 {
-  if (!std::filesystem::exists(path))
-    throw InputError(fmt::format("case file '{}' does not exist", path.string()));
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(fmt::format("case file '{}' is not a regular file (a folder?): give a "
-                                 "TOML case file",
-                                 path.string()));
+  check_input_file(path, "case file");
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof())
@@ -338,16 +334,16 @@ void Config::set_text(const std::string& key, const std::string& text)
   {
     const double x = parse_double(key, text);
     if (x != std::round(x))
-      throw InputError(fmt::format("key '{}' = {} is not an integer", key, text));
+      throw InputError(fmt::format("key '{}' = {} is not an integer", key, shorten(text)));
     if (!(x >= k.lo && x <= k.hi)) // before the cast: 1e30 does not fit an int64
-      throw InputError(fmt::format("key '{}' = {} is out of range: allowed {}", key, text,
+      throw InputError(fmt::format("key '{}' = {} is out of range: allowed {}", key, shorten(text),
                                    range_text(k)));
     set(key, static_cast<std::int64_t>(x));
     break;
   }
   case KeyType::boolean:
     if (text != "true" && text != "false")
-      throw InputError(fmt::format("key '{}' = \"{}\": expected true or false", key, text));
+      throw InputError(fmt::format("key '{}' = \"{}\": expected true or false", key, shorten(text)));
     set(key, text == "true");
     break;
   case KeyType::string: set(key, text); break;

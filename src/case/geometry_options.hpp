@@ -9,7 +9,7 @@
 
 namespace breastsim
 {
-/// The neutral half cap (SPEC.md): base radius R, height H (nipple at
+/// The neutral half cap (docs/MODEL.md): base radius R, height H (nipple at
 /// (0, H, 0)), and its mesh.
 struct HalfCapSpec
 {
@@ -38,7 +38,7 @@ struct HalfCapSpec
   void require_parametric_cap(const std::string& job) const;
 };
 
-/// The incision parameters (SPEC.md, "Incision").
+/// The incision parameters (docs/MODEL.md, "Incision").
 struct IncisionSpec
 {
   double a_deg = 30.0; ///< angle a of P1 with the symmetry plane [deg]

@@ -1,5 +1,5 @@
 #pragma once
-// Patient postures (SPEC.md): gravity in the body frame as a function of the
+// Patient postures (docs/MODEL.md): gravity in the body frame as a function of the
 // angle theta between the chest and the vertical,
 //   g_vec = -g (cos(theta) e_z + sin(theta) e_y).
 #include "config.hpp"

@@ -6,6 +6,12 @@
 #include "output_target.hpp"
 #include "petsc.hpp"
 #include "command.hpp"
+#include "strings.hpp"
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <dolfinx/common/log.h>
 #include <dolfinx/common/timing.h>
 #include <functional>
@@ -29,6 +35,64 @@ std::string unknown_subcommand(int argc, char** argv, const CLI::App& app)
   return "";
 }
 
+/// A message for the terminal: every run of more than 300 non-blank bytes
+/// (a pasted value, a file's contents) shortened.
+std::string bounded(const std::string& message)
+{
+  std::string out, word;
+  auto flush = [&]
+  {
+    out += breastsim::shorten(word, word.size() > 300 ? 80 : 300);
+    word.clear();
+  };
+  for (char ch : message)
+  {
+    if (ch == ' ' || ch == '\n')
+    {
+      flush();
+      out += ch;
+    }
+    else
+      word += ch;
+  }
+  flush();
+  return out;
+}
+
+/// Why this process cannot start MPI/PETSc cleanly, or "" if it can: a
+/// working directory that was deleted, a $TMPDIR that does not exist (OpenMPI
+/// would create it).
+std::string environment_problem()
+{
+  std::error_code ec;
+  (void)std::filesystem::current_path(ec);
+  if (ec)
+    return "the working directory cannot be read (" + ec.message()
+           + "; was it deleted?): cd to an existing folder";
+  if (const char* t = std::getenv("TMPDIR"); t && *t && !std::filesystem::is_directory(t, ec))
+    return "TMPDIR = '" + breastsim::shorten(t) + "' is not an existing folder: create it or unset TMPDIR";
+  return "";
+}
+
+/// Flush standard output; false (with a message) if it cannot be written
+/// (a full device). Standard output then goes to /dev/null, so that nothing
+/// later (PETSc's finalisation) reports the same failure again.
+bool stdout_ok()
+{
+  std::cout.flush();
+  const bool ok = std::cout.good() && std::fflush(stdout) == 0 && !std::ferror(stdout);
+  if (!ok)
+  {
+    const int err = errno;
+    std::cerr << "breastsim: error: cannot write to standard output: " << std::strerror(err) << "\n";
+    std::cout.clear();
+    std::clearerr(stdout);
+    if (!std::freopen("/dev/null", "w", stdout))
+      std::cerr << "breastsim: error: cannot redirect standard output\n";
+  }
+  return ok;
+}
+
 /// Run the parsed subcommand: its exit code, or that of its error (input 2,
 /// solve 3, anything else 1). With -v, dolfinx's timing table at the end.
 int run_command(const std::vector<breastsim::cli::Command>& commands)
@@ -47,19 +111,19 @@ int run_command(const std::vector<breastsim::cli::Command>& commands)
   catch (const InputError& e)
   {
     if (log::is_root())
-      std::cerr << "breastsim: input error: " << e.what() << "\n";
+      std::cerr << "breastsim: input error: " << bounded(e.what()) << "\n";
     code = 2;
   }
   catch (const SolveError& e)
   {
     if (log::is_root())
-      std::cerr << "breastsim: solve failed: " << e.what() << "\n";
+      std::cerr << "breastsim: solve failed: " << bounded(e.what()) << "\n";
     code = 3;
   }
   catch (const std::exception& e)
   {
     if (log::is_root())
-      std::cerr << "breastsim: error: " << e.what() << "\n";
+      std::cerr << "breastsim: error: " << bounded(e.what()) << "\n";
     code = 1;
   }
   return code;
@@ -76,7 +140,7 @@ bool petsc_ok(const std::function<void()>& checked_call)
   }
   catch (const breastsim::PetscCallError& e)
   {
-    std::cerr << "breastsim: error: " << e.what() << "\n";
+    std::cerr << "breastsim: error: " << bounded(e.what()) << "\n";
     return false;
   }
 }
@@ -129,13 +193,27 @@ int main(int argc, char** argv)
     return code == 0 ? 0 : 2;     // every command-line error is bad input
   }
 
+  if (const std::string problem = environment_problem(); !problem.empty())
+  {
+    std::cerr << "breastsim: error: " << problem << "\n";
+    return 1;
+  }
+  // Run alone (not under mpirun), OpenMPI needs no helper daemon (orted).
+  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   if (!petsc_ok([] { PETSC_CHECK(PetscInitializeNoArguments()); }))
     return 1;
+  // PETSc's handlers would turn SIGPIPE and friends into an MPI abort (exit
+  // 59); breastsim's own handling (interrupt.hpp) takes their place.
+  if (!petsc_ok([] { PETSC_CHECK(PetscPopSignalHandler()); }))
+    return 1;
+  interrupt::stop_on_broken_pipe();
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING; // dolfinx's own log
   spdlog::set_level(quiet ? spdlog::level::warn
                           : (verbose ? spdlog::level::debug : spdlog::level::info));
   spdlog::set_pattern("[%H:%M:%S] %v");
-  const int code = run_command(commands);
+  int code = run_command(commands);
+  if (!stdout_ok() && code == 0)
+    code = 1;
   if (!petsc_ok([] { PETSC_CHECK(PetscFinalize()); }))
     return code == 0 ? 1 : code;
   return code;

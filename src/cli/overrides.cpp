@@ -1,6 +1,8 @@
 #include "overrides.hpp"
 #include "errors.hpp"
 #include "petsc.hpp"
+#include "petsc_option_rules.hpp"
+#include "strings.hpp"
 #include "solver_options.hpp"
 #include <fmt/format.h>
 #include <petscksp.h>
@@ -56,7 +58,12 @@ Config load_case(const std::string& file, const std::vector<std::string>& sets)
 
 void insert_petsc_options(const Config& c, const std::string& extra)
 {
-  const std::string opts = SolverOptions::from(c).petsc_options + " " + extra;
+  const std::string from_case = SolverOptions::from(c).petsc_options;
+  if (auto why = petsc_options_refusal(from_case))
+    throw InputError(fmt::format("key 'solver.petsc_options' = \"{}\": {}", shorten(from_case), *why));
+  if (auto why = petsc_options_refusal(extra))
+    throw InputError(fmt::format("--petsc-options \"{}\": {}", shorten(extra), *why));
+  const std::string opts = from_case + " " + extra;
   std::string message;
   PETSC_CHECK(PetscPushErrorHandler(keep_message, &message));
   PetscErrorCode rc = PetscOptionsInsertString(nullptr, opts.c_str());
@@ -66,7 +73,7 @@ void insert_petsc_options(const Config& c, const std::string& extra)
   if (rc != 0)
     throw InputError(fmt::format("PETSc options \"{}\" (solver.petsc_options and --petsc-options) "
                                  "are refused by PETSc: {}",
-                                 opts,
+                                 shorten(opts),
                                  message.empty() ? "error " + std::to_string(rc) : message));
 }
 

@@ -2,7 +2,7 @@
 // [SCAN3 --posture ...] --units mm --chest CHEST [--fit mu[,c]] [--predict
 // SCAN --predict-posture all_fours] --out DIR`: the material and the neutral
 // state fitted to scans of one breast in several postures
-// (calibrate/fit/scan_calibration.hpp, docs/SCANS.md "Two-scan calibration").
+// (calibrate/fit/scan_calibration.hpp, docs/SCANS.md "Calibration with scans").
 #include "breastsim_registry.hpp"
 #include "case_options.hpp"
 #include "command.hpp"

@@ -3,6 +3,7 @@
 // each job in a process of its own.
 #include "app_server.hpp"
 #include "errors.hpp"
+#include "interrupt.hpp"
 #include "job_runner.hpp"
 #include "command.hpp"
 #include <filesystem>
@@ -40,6 +41,7 @@ Command add_serve_command(CLI::App& root)
             if (size != 1)
               throw InputError("breastsim serve runs as one process (not under mpirun -n " +
                                std::to_string(size) + ")");
+            interrupt::ignore_broken_pipe(); // a browser that hung up must not stop the server
             o->serve.host_given = host->count() > 0;
             o->serve.program = std::filesystem::read_symlink("/proc/self/exe").string();
             return app::serve(o->serve);

@@ -31,9 +31,10 @@ Command add_view_command(CLI::App& root)
       ->capture_default_str();
   return {app, [o]()
           {
-            // Pictures are written only into a finished result folder of breastsim's own.
+            // Pictures are written only into a finished result folder of breastsim's own,
+            // rendered beside it and moved in file by file (never through a link).
             const auto dir = normalise_path(o->result_dir, "result_dir");
-            if (!std::filesystem::exists(dir / result_marker))
+            if (!std::filesystem::exists(std::filesystem::symlink_status(dir / result_marker)))
               throw InputError(fmt::format("refusing to write pictures into '{}': it has no {} "
                                            "marker, so breastsim did not write it",
                                            dir.string(), result_marker));
@@ -42,9 +43,11 @@ Command add_view_command(CLI::App& root)
             if (auto why = refusal_reason(dir, rules))
               throw InputError(*why);
             check_picture_tools(MPI_COMM_WORLD);
-            render_pictures(o->result_dir, {o->compare, o->size}, MPI_COMM_WORLD);
-            write_view_page(o->result_dir, o->compare, MPI_COMM_WORLD);
-            refresh_marker(dir, MPI_COMM_WORLD); // the marker lists the pictures too
+            const auto target = OutputTarget::claim(dir.string(), rules, MPI_COMM_WORLD);
+            OutputDir staging(target, MPI_COMM_WORLD);
+            render_pictures(dir, {o->compare, o->size, staging.path()}, MPI_COMM_WORLD);
+            write_view_page(dir, o->compare, MPI_COMM_WORLD, staging.path() / "index.html");
+            staging.commit_files(); // the marker lists the pictures too
             if (log::is_root())
             {
               const auto page = std::filesystem::absolute(o->result_dir) / "index.html";

@@ -20,15 +20,22 @@ std::mutex g_mutex;
 std::vector<fs::path> g_paths; // in registration order; removed newest first
 std::set<pid_t> g_children;
 bool g_installed = false;
+pthread_t g_signal_thread;
 
+/// The signals the signal thread waits for: blocked in every thread.
 sigset_t stop_signals()
 {
   sigset_t s;
   sigemptyset(&s);
   sigaddset(&s, SIGINT);
   sigaddset(&s, SIGTERM);
+  sigaddset(&s, SIGHUP);
   return s;
 }
+
+/// SIGPIPE is raised in the thread that wrote to the closed pipe, so it is
+/// not blocked there; this handler forwards it to the signal thread.
+void forward_broken_pipe(int) { pthread_kill(g_signal_thread, SIGPIPE); }
 
 /// Terminate the children, remove the registered paths, exit 128 + sig.
 [[noreturn]] void stop(int sig)
@@ -57,16 +64,32 @@ void install()
   g_installed = true;
   const sigset_t s = stop_signals();
   pthread_sigmask(SIG_BLOCK, &s, nullptr);
-  std::thread(
+  std::signal(SIGXFSZ, SIG_IGN); // a file-size limit fails the write (EFBIG) instead of killing
+  std::thread signal_thread(
       [s]()
       {
+        sigset_t wait_for = s;
+        sigaddset(&wait_for, SIGPIPE); // forwarded here by forward_broken_pipe
+        pthread_sigmask(SIG_BLOCK, &wait_for, nullptr);
         int sig = 0;
-        while (sigwait(&s, &sig) != 0)
+        while (sigwait(&wait_for, &sig) != 0)
           ;
         stop(sig);
-      })
-      .detach();
+      });
+  g_signal_thread = signal_thread.native_handle();
+  signal_thread.detach();
 }
+
+void stop_on_broken_pipe()
+{
+  struct sigaction a{};
+  a.sa_handler = forward_broken_pipe;
+  sigemptyset(&a.sa_mask);
+  a.sa_flags = SA_RESTART;
+  sigaction(SIGPIPE, &a, nullptr);
+}
+
+void ignore_broken_pipe() { std::signal(SIGPIPE, SIG_IGN); }
 
 void register_path(const fs::path& p)
 {
@@ -91,7 +114,12 @@ int run_child(const std::vector<std::string>& argv)
   sigset_t none;
   sigemptyset(&none);
   posix_spawnattr_setsigmask(&attr, &none); // the child handles SIGINT/SIGTERM itself
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
+  sigset_t defaults; // and gets the default action of the signals this process ignores
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGPIPE);
+  sigaddset(&defaults, SIGXFSZ);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;
   int rc;
   {

@@ -3,12 +3,17 @@
 #include "interrupt.hpp"
 #include "log.hpp"
 #include "on_root.hpp"
+#include "safe_write.hpp"
+#include <sys/stat.h>
 #include <cerrno>
 #include <cstring>
 #include <dolfinx/io/VTKFile.h>
 #include <fmt/format.h>
 #include <dolfinx/io/XDMFFile.h>
 #include <fstream>
+#include <map>
+#include <mutex>
+#include <hdf5.h>
 #include <unistd.h>
 
 namespace breastsim
@@ -17,17 +22,39 @@ namespace fs = std::filesystem;
 
 namespace
 {
-/// The message for a failed write of `file`: the device is full, or `what`.
+std::mutex g_stagings_mutex;
+std::map<fs::path, fs::path> g_stagings; ///< staging folder -> the result folder it becomes
+
+/// `file` as the user will find it: a file in a staging folder named by its
+/// place in the result folder.
+fs::path as_user_sees(const fs::path& file)
+{
+  std::lock_guard<std::mutex> lock(g_stagings_mutex);
+  for (const auto& [staging, final] : g_stagings)
+  {
+    const fs::path rel = file.lexically_relative(staging);
+    if (!rel.empty() && *rel.begin() != "..")
+      return rel == "." ? final : final / rel;
+  }
+  return file;
+}
+
+/// The message for a failed write of `file`: the device is full, the file
+/// is larger than the file-size limit, or `what`.
 std::string write_failure(const fs::path& file, const std::string& what)
 {
   const int err = errno; // before fs::space can change it
   std::error_code ec;
   const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
   const auto space = fs::space(dir, ec);
+  const std::string shown = as_user_sees(file).string();
   if (err == ENOSPC || err == EDQUOT || (!ec && space.available < (1u << 20)))
-    return fmt::format("cannot write '{}': no space left on device ({} bytes free)",
-                       file.string(), ec ? 0 : space.available);
-  return fmt::format("cannot write '{}': {}", file.string(), what);
+    return fmt::format("cannot write '{}': no space left on device ({} bytes free)", shown,
+                       ec ? 0 : space.available);
+  if (err == EFBIG)
+    return fmt::format("cannot write '{}': File too large (beyond the file-size limit, ulimit -f)",
+                       shown);
+  return fmt::format("cannot write '{}': {}", shown, what);
 }
 } // namespace
 
@@ -40,16 +67,33 @@ OutputDir::OutputDir(const OutputTarget& target, MPI_Comm comm)
   on_root(comm,
           [&]
           {
-            if (fs::exists(fs::symlink_status(_staging)))
-              throw std::runtime_error(fmt::format("staging folder '{}' exists already", _staging.string()));
+            // mkdir, not create_directories: fails on anything of that name, a link included
+            if (::mkdir(_staging.c_str(), 0755) != 0)
+            {
+              const int err = errno;
+              throw InputError(fmt::format(
+                  "refusing to write the result into '{}': {}", _final.string(),
+                  err == EEXIST ? fmt::format("'{}' beside it is in the way (breastsim builds its "
+                                              "result there while it runs; move it away)",
+                                              _staging.filename().string())
+                                : fmt::format("cannot create a folder in '{}': {}",
+                                              _final.parent_path().string(), std::strerror(err))));
+            }
             interrupt::register_path(_staging);
-            fs::create_directories(_staging);
+            {
+              std::lock_guard<std::mutex> lock(g_stagings_mutex);
+              g_stagings[_staging] = _final;
+            }
             write_marker(_staging, "staging");
           });
 }
 
 OutputDir::~OutputDir()
 {
+  {
+    std::lock_guard<std::mutex> lock(g_stagings_mutex);
+    g_stagings.erase(_staging);
+  }
   int finalized = 0;
   MPI_Finalized(&finalized);
   const int rank = finalized ? 0 : rank_of(_comm);
@@ -73,6 +117,10 @@ void OutputDir::commit()
             const fs::path old = _final.parent_path() / (_final.filename().string() + ".old-"
                                                          + std::to_string(getpid()));
             const bool had_old = fs::exists(fs::symlink_status(_final));
+            if (fs::exists(fs::symlink_status(old)))
+              throw InputError(fmt::format("refusing to replace '{}': '{}' beside it is in the way "
+                                           "(move it away)",
+                                           _final.string(), old.filename().string()));
             if (had_old)
             {
               interrupt::register_path(old);
@@ -90,6 +138,32 @@ void OutputDir::commit()
   MPI_Barrier(_comm);
 }
 
+void OutputDir::commit_files()
+{
+  MPI_Barrier(_comm);
+  on_root(_comm,
+          [&]
+          {
+            if (auto why = refusal_reason(_final, _rules)) // changed meanwhile?
+              throw InputError(*why);
+            std::vector<fs::path> staged;
+            for (const auto& e : fs::directory_iterator(_staging))
+              if (e.path().filename() != result_marker)
+                staged.push_back(e.path().filename());
+            for (const auto& name : staged) // all checked before anything moves
+            {
+              const auto st = fs::symlink_status(_final / name);
+              if (fs::exists(st) && !fs::is_regular_file(st))
+                throw InputError(refusal_reason(_final, _rules).value_or(fmt::format(
+                    "refusing to write '{}': it is not a regular file", (_final / name).string())));
+            }
+            for (const auto& name : staged) // rename replaces the entry, never follows a link
+              fs::rename(_staging / name, _final / name);
+            write_marker(_final, "complete");
+          });
+  MPI_Barrier(_comm);
+}
+
 void write_json(const fs::path& file, const nlohmann::json& j, MPI_Comm comm)
 {
   write_text(file, j.dump(2) + "\n", comm);
@@ -100,12 +174,15 @@ void write_text(const fs::path& file, const std::string& text, MPI_Comm comm)
   on_root(comm,
           [&]
           {
-            errno = 0;
-            std::ofstream f(file);
-            f << text;
-            f.close();
-            if (!f)
-              throw std::runtime_error(write_failure(file, std::strerror(errno)));
+            try
+            {
+              write_file_nofollow(file, text);
+            }
+            catch (const std::system_error& e)
+            {
+              errno = e.code().value();
+              throw std::runtime_error(write_failure(file, e.code().message()));
+            }
           });
 }
 
@@ -115,24 +192,35 @@ void write_owned_json(const fs::path& file, nlohmann::json j, MPI_Comm comm)
     j["written_by"] = "breastsim";
   const fs::path tmp = file.parent_path() / ("." + file.filename().string() + ".partial-"
                                              + std::to_string(getpid()));
-  on_root(comm, [&] { interrupt::register_path(tmp); });
-  try
-  {
-    write_json(tmp, j, comm);
-    on_root(comm,
-            [&]
+  // The temporary sibling is created new (O_EXCL, never through a link); a
+  // failure names the file the user asked for, not the temporary one.
+  on_root(comm,
+          [&]
+          {
+            try
             {
-              fs::rename(tmp, file);
+              write_file_nofollow(tmp, j.dump(2) + "\n", Existing::refuse);
+            }
+            catch (const std::system_error& e)
+            {
+              if (e.code().value() == EEXIST || e.code().value() == ELOOP)
+                throw InputError(fmt::format("cannot write '{}': '{}' beside it is in the way "
+                                             "(breastsim writes there first; move it away)",
+                                             file.string(), tmp.filename().string()));
+              errno = e.code().value();
+              throw std::runtime_error(write_failure(file, e.code().message()));
+            }
+            interrupt::register_path(tmp);
+            std::error_code ec;
+            fs::rename(tmp, file, ec);
+            if (ec)
+            {
+              fs::remove(tmp, ec);
               interrupt::unregister_path(tmp);
-            });
-  }
-  catch (...)
-  {
-    std::error_code ec;
-    if (rank_of(comm) == 0)
-      fs::remove(tmp, ec);
-    throw;
-  }
+              throw std::runtime_error(write_failure(file, ec.message()));
+            }
+            interrupt::unregister_path(tmp);
+          });
 }
 
 void refresh_marker(const fs::path& dir, MPI_Comm comm)
@@ -193,6 +281,9 @@ void write_fields(Model& model, const fs::path& stem, bool xdmf, bool vtk)
     xdmf = false;
     vtk = true;
   }
+  // HDF5 prints its error stack (HDF5-DIAG, dozens of lines) on a failed
+  // write; breastsim reports the failure once, naming the file.
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   try
   {
     if (xdmf)

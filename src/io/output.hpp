@@ -26,6 +26,12 @@ public:
   /// folder; throws InputError (nothing replaced) if the target changed
   /// meanwhile into something breastsim may not replace.
   void commit();
+  /// Collective. Move the staged files one by one into the existing target
+  /// folder (a finished result: `view` adds pictures), refusing before
+  /// anything moves if an entry of the same name there is not a regular
+  /// file; then list them in the target's marker. The staging folder is
+  /// removed by the destructor.
+  void commit_files();
   const std::filesystem::path& final_path() const { return _final; }
 
 private:

@@ -1,5 +1,8 @@
 #include "output_target.hpp"
 #include "errors.hpp"
+#include "input_file.hpp"
+#include "safe_write.hpp"
+#include "strings.hpp"
 #include "interrupt.hpp"
 #include "on_root.hpp"
 #include <cerrno>
@@ -9,6 +12,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sys/file.h>
@@ -48,14 +52,20 @@ bool process_alive(long pid)
   return pid > 0 && (kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
 }
 
-/// The first entry below `dir` that the marker does not list, if any.
-std::optional<fs::path> foreign_entry(const fs::path& dir, const nlohmann::json& marker)
+/// An entry of a result folder that breastsim did not write, and why.
+struct ForeignEntry
+{
+  fs::path path;
+  std::string why;
+};
+
+/// The first entry below `dir` that the marker does not list, or that is a
+/// symbolic link or a special file (breastsim writes neither), if any.
+std::optional<ForeignEntry> foreign_entry(const fs::path& dir, const nlohmann::json& marker)
 {
   std::set<std::string> listed, parents;
   for (const auto& f : marker.value("files", nlohmann::json::array()))
   {
-    if (!f.is_string())
-      continue;
     const fs::path p = f.get<std::string>();
     listed.insert(p.lexically_normal().string());
     for (fs::path q = p.parent_path(); !q.empty(); q = q.parent_path())
@@ -65,14 +75,38 @@ std::optional<fs::path> foreign_entry(const fs::path& dir, const nlohmann::json&
   for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::end(it); it.increment(ec))
   {
     const std::string rel = it->path().lexically_relative(dir).string();
+    const auto st = it->symlink_status(ec);
+    if (fs::is_symlink(st) || (!fs::is_directory(st) && !fs::is_regular_file(st)))
+      return ForeignEntry{it->path(), fmt::format("which is {}; breastsim never writes one",
+                                                  entry_kind(it->path()))};
     if (rel == result_marker)
       continue;
-    const bool dir_entry = it->is_directory() && !it->is_symlink();
-    if (dir_entry ? parents.count(rel) == 0 && listed.count(rel) == 0 : listed.count(rel) == 0)
-      return it->path();
+    if (fs::is_directory(st) ? parents.count(rel) == 0 && listed.count(rel) == 0 : listed.count(rel) == 0)
+      return ForeignEntry{it->path(), "which breastsim did not write"};
   }
   if (ec)
-    return dir;
+    return ForeignEntry{dir, "which cannot be listed (" + ec.message() + ")"};
+  return std::nullopt;
+}
+
+/// Why a marker's "files" list is not one breastsim writes: every entry a
+/// relative path inside the folder (no root, no "..").
+std::optional<std::string> bad_file_list(const nlohmann::json& m)
+{
+  if (!m.contains("files"))
+    return std::nullopt;
+  if (!m.at("files").is_array())
+    return "its \"files\" is not a list";
+  for (const auto& f : m.at("files"))
+  {
+    if (!f.is_string() || f.get<std::string>().empty())
+      return "its \"files\" holds an entry that is not a file name";
+    const fs::path p = f.get<std::string>();
+    const bool escapes = std::any_of(p.begin(), p.end(), [](const fs::path& c) { return c == ".."; });
+    if (p.has_root_path() || escapes)
+      return fmt::format("its \"files\" lists '{}', which is not a path inside the folder",
+                         shorten(f.get<std::string>()));
+  }
   return std::nullopt;
 }
 
@@ -143,10 +177,16 @@ std::optional<std::string> refusal_reason(const fs::path& target, const OutputRu
   const auto st = fs::symlink_status(target, ec);
   if (ec || !fs::exists(st))
     return std::nullopt; // a new folder
-  if (!fs::is_directory(st))
+  if (fs::is_regular_file(st))
     return refuse(target, "it is a file, not a folder written by breastsim");
-  const bool marked = fs::is_regular_file(fs::symlink_status(target / result_marker, ec));
-  if (!marked)
+  if (!fs::is_directory(st))
+    return refuse(target, fmt::format("it is {}, not a folder written by breastsim",
+                                      entry_kind(target)));
+  const auto marker_st = fs::symlink_status(target / result_marker, ec);
+  if (fs::exists(marker_st) && !fs::is_regular_file(marker_st))
+    return refuse(target, fmt::format("its {} is {}, which breastsim never writes", result_marker,
+                                      entry_kind(target / result_marker)));
+  if (!fs::exists(marker_st))
   {
     if (fs::is_empty(target, ec) && !ec)
       return rules.force ? std::nullopt
@@ -164,14 +204,13 @@ std::optional<std::string> refusal_reason(const fs::path& target, const OutputRu
   }
   catch (const std::exception& e)
   {
-    return refuse(target, fmt::format("its {} cannot be read: {}", result_marker, e.what()));
+    return refuse(target, fmt::format("its {} cannot be read: {}", result_marker, plain_error(e)));
   }
   if (m.value("state", "") != "complete")
     return refuse(target, "its marker says it is not a finished breastsim result");
   if (auto f = foreign_entry(target, m))
-    return refuse(target, fmt::format("it holds '{}', which breastsim did not write (move it "
-                                      "away or choose another folder)",
-                                      f->lexically_relative(target).string()));
+    return refuse(target, fmt::format("it holds '{}', {} (move it away or choose another folder)",
+                                      f->path.lexically_relative(target).string(), f->why));
   return std::nullopt;
 }
 
@@ -189,6 +228,8 @@ nlohmann::json read_marker(const fs::path& dir)
   const auto m = nlohmann::json::parse(in);
   if (!m.is_object() || m.value("format", "") != marker_format)
     throw std::runtime_error(fmt::format("not a '{}' marker", marker_format));
+  if (auto why = bad_file_list(m))
+    throw std::runtime_error(*why);
   return m;
 }
 
@@ -206,10 +247,15 @@ void write_marker(const fs::path& dir, const std::string& state)
                             {"command", g_command_line}, {"created", when},
                             {"host", host_name()},      {"pid", static_cast<long>(getpid())},
                             {"state", state},          {"files", files}};
-  std::ofstream out(dir / result_marker);
-  out << m.dump(2) << "\n";
-  if (!out)
-    throw std::runtime_error(fmt::format("cannot write {}", (dir / result_marker).string()));
+  try
+  {
+    write_file_nofollow(dir / result_marker, m.dump(2) + "\n");
+  }
+  catch (const std::system_error& e)
+  {
+    throw std::runtime_error(fmt::format("cannot write '{}': {}", (dir / result_marker).string(),
+                                         e.code().message()));
+  }
 }
 
 fs::path staging_path(const fs::path& target, long pid)
@@ -251,29 +297,37 @@ int remove_stale_staging(const fs::path& target)
 
 namespace
 {
-/// Open and flock `lock_file`; InputError if another run holds it. Retries
-/// when the previous holder unlinked the file between our open and flock.
+/// Open and flock `lock_file` (never through a symbolic link); InputError,
+/// naming the target, if another run holds it or something else has its name.
+/// Retries when the previous holder unlinked the file between our open and flock.
 int acquire_lock(const fs::path& lock_file, const fs::path& target)
 {
+  auto no = [&](const std::string& why) { return InputError(refuse(target, why)); };
   for (int attempt = 0; attempt < 5; ++attempt)
   {
-    const int fd = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    std::error_code ec;
+    const auto st = fs::symlink_status(lock_file, ec);
+    if (fs::exists(st) && !fs::is_regular_file(st))
+      throw no(fmt::format("'{}' beside it is {}, not breastsim's lock file (remove it)",
+                           lock_file.filename().string(), entry_kind(lock_file)));
+    const int fd = ::open(lock_file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0 && errno == ELOOP)
+      throw no(fmt::format("'{}' beside it is a symbolic link, not breastsim's lock file (remove it)",
+                           lock_file.filename().string()));
     if (fd < 0)
-      throw InputError(fmt::format("cannot create the lock file '{}': {}", lock_file.string(),
-                                   std::strerror(errno)));
+      throw no(fmt::format("cannot create a file in '{}': {}", lock_file.parent_path().string(),
+                           std::strerror(errno)));
     if (flock(fd, LOCK_EX | LOCK_NB) != 0)
     {
       ::close(fd);
-      throw InputError(fmt::format("refusing to write the result into '{}': another breastsim "
-                                   "run is writing there (lock {})",
-                                   target.string(), lock_file.string()));
+      throw no("another breastsim run is writing there (wait for it to finish)");
     }
     struct stat a{}, b{};
-    if (fstat(fd, &a) == 0 && ::stat(lock_file.c_str(), &b) == 0 && a.st_ino == b.st_ino)
+    if (fstat(fd, &a) == 0 && ::lstat(lock_file.c_str(), &b) == 0 && a.st_ino == b.st_ino)
       return fd;
     ::close(fd);
   }
-  throw InputError(fmt::format("cannot lock '{}'", lock_file.string()));
+  throw no("another breastsim run keeps taking its lock");
 }
 } // namespace
 
@@ -301,8 +355,8 @@ OutputTarget OutputTarget::claim(const std::string& given, const OutputRules& ru
             }
             catch (const std::exception& e)
             {
-              throw InputError(
-                  fmt::format("cannot prepare the result folder '{}': {}", given, e.what()));
+              throw InputError(fmt::format("cannot prepare the result folder '{}': {}",
+                                           shorten(given, 300), plain_error(e)));
             }
           });
   std::string p = t._path.string();
@@ -331,7 +385,12 @@ OutputTarget::~OutputTarget()
 
 fs::path claim_output_file(const std::string& given, const OutputRules& rules, const std::string& what)
 {
-  const fs::path p = normalise_path(given, what);
+  // The folder normalised, the file's own name not resolved: a link there is refused below.
+  const fs::path named = normalise_path(given, what);
+  const fs::path p = fs::is_symlink(fs::symlink_status(fs::absolute(given)))
+                         ? normalise_path(fs::absolute(given).parent_path().string(), what)
+                               / fs::path(given).filename()
+                         : named;
   auto no = [&](const std::string& why)
   { return InputError(fmt::format("refusing to write {} '{}': {}", what, p.string(), why)); };
   if (auto why = protected_reason(p, rules))
@@ -341,7 +400,7 @@ fs::path claim_output_file(const std::string& given, const OutputRules& rules, c
   if (ec || !fs::exists(st))
     return p;
   if (!fs::is_regular_file(st))
-    throw no("it exists and is not a regular file");
+    throw no(fmt::format("it is {}, not a regular file written by breastsim", entry_kind(p)));
   try
   {
     std::ifstream in(p);

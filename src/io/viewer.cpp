@@ -37,7 +37,7 @@ std::filesystem::path viewer_dir()
 {
   if (const char* d = std::getenv("BREASTSIM_VIEWER_DIR"))
     return d;
-  // The source tree's src/io/viewer (absolute path set by CMake; __FILE__ may be
+  // The source tree's src/viewer (absolute path set by CMake; __FILE__ may be
   // relative, e.g. under ccache's base_dir).
   return BREASTSIM_VIEWER_SOURCE_DIR;
 }
@@ -59,7 +59,7 @@ void check_picture_tools(MPI_Comm comm)
         "): apt-get install python3-matplotlib python3-numpy (or run bash .ci/setup)");
   if (!std::filesystem::is_regular_file(script("render.py")))
     throw std::runtime_error("picture script " + script("render.py") +
-                             " not found (set BREASTSIM_VIEWER_DIR to breastsim's src/io/viewer)");
+                             " not found (set BREASTSIM_VIEWER_DIR to breastsim's src/viewer)");
 }
 
 void render_pictures(const std::filesystem::path& result_dir, const PictureOptions& o,
@@ -69,6 +69,8 @@ void render_pictures(const std::filesystem::path& result_dir, const PictureOptio
                                    "--size", o.size};
   if (!o.compare.empty())
     argv.insert(argv.end(), {"--compare", o.compare.string()});
+  if (!o.out.empty())
+    argv.insert(argv.end(), {"--out", o.out.string()});
   log::info("rendering pictures ({} px)", o.size);
   const int code = run_on_root(argv, comm);
   if (code == 3 || code < 0)
@@ -85,11 +87,14 @@ void run_viewer_script(const std::string& name, const std::vector<std::string>& 
 }
 
 void write_view_page(const std::filesystem::path& result_dir,
-                     const std::filesystem::path& compare, MPI_Comm comm)
+                     const std::filesystem::path& compare, MPI_Comm comm,
+                     const std::filesystem::path& page)
 {
   std::vector<std::string> argv = {viewer_python(), script("page.py"), result_dir.string()};
   if (!compare.empty())
     argv.insert(argv.end(), {"--compare", compare.string()});
+  if (!page.empty())
+    argv.insert(argv.end(), {"--out", page.string()});
   check_code(run_on_root(argv, comm), "writing the 3D page of " + result_dir.string());
 }
 } // namespace breastsim

@@ -1,6 +1,6 @@
 #pragma once
 // Pictures (PNG, matplotlib) and the 3D page (index.html, three.js) of a
-// result folder, made by the Python scripts in src/io/viewer/ run under
+// result folder, made by the Python scripts in src/viewer/ run under
 // Debian's python3. Rank 0 runs them; the functions are collective and throw
 // on every rank if a script failed.
 #include <filesystem>
@@ -14,9 +14,10 @@ struct PictureOptions
 {
   std::filesystem::path compare;  ///< optional second result folder (pre vs post)
   std::string size = "800x600";   ///< picture size WIDTHxHEIGHT in pixels
+  std::filesystem::path out;      ///< folder the pictures go to (default: the result folder)
 };
 
-/// Folder of render.py, page.py and web/ (the source tree's src/io/viewer, or
+/// Folder of render.py, page.py and web/ (the source tree's src/viewer, or
 /// $BREASTSIM_VIEWER_DIR).
 std::filesystem::path viewer_dir();
 /// Python interpreter used for the scripts (/usr/bin/python3, or $BREASTSIM_PYTHON).
@@ -40,7 +41,9 @@ void render_pictures(const std::filesystem::path& result_dir, const PictureOptio
 void run_viewer_script(const std::string& name, const std::vector<std::string>& args,
                        const std::string& what, MPI_Comm comm);
 
-/// Collective. Write `result_dir`/index.html, the self-contained 3D page.
+/// Collective. Write the self-contained 3D page of `result_dir` to `page`
+/// (default `result_dir`/index.html).
 void write_view_page(const std::filesystem::path& result_dir,
-                     const std::filesystem::path& compare, MPI_Comm comm);
+                     const std::filesystem::path& compare, MPI_Comm comm,
+                     const std::filesystem::path& page = {});
 } // namespace breastsim

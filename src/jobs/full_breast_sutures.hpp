@@ -1,5 +1,5 @@
 #pragma once
-// The sutures of a full breast (SPEC.md "Full breast and patient scans"):
+// The sutures of a full breast (docs/MODEL.md "Full breast and patient scans"):
 // the keel faces sewn to each other by the tissue-to-tissue suture
 // (forms/tissue_suture.py, faces suture_a -> suture_b, mirror map
 // g(x, y, z) = (-x, y, z): f(g(p)) = f(p)) and the P2 face sewn to the chest

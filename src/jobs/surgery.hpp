@@ -1,5 +1,5 @@
 #pragma once
-// Breast reduction surgery (SPEC.md): pre-operative postures, incision by the
+// Breast reduction surgery (docs/MODEL.md): pre-operative postures, incision by the
 // planes P1 and P2 with remeshing, suturing (knitting conditions) without
 // gravity, the final neutral state (stresses reset), and the post-operative
 // postures from it.

@@ -1,5 +1,5 @@
 #pragma once
-// Mesh morphing of the neutral half cap (SPEC.md): move the nodes of a mesh
+// Mesh morphing of the neutral half cap (docs/MODEL.md): move the nodes of a mesh
 // of the cap (R0, H0) onto the cap (R, H) without changing the topology, so
 // that the observables are smooth functions of R and H (a calibration can
 // difference them with small steps; remeshing makes them jump).

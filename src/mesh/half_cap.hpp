@@ -1,5 +1,5 @@
 #pragma once
-// Parametric half breast in its neutral state (SPEC.md): the part x >= 0 of a
+// Parametric half breast in its neutral state (docs/MODEL.md): the part x >= 0 of a
 // spherical cap with base radius R in the plane y = 0 and apex (nipple) at
 // (0, H, 0). Built with gmsh's OpenCASCADE kernel; split at z = 0 so that the
 // apex is a mesh vertex.

@@ -1,5 +1,5 @@
 #pragma once
-// The incision of a breast reduction (SPEC.md, "Incision") on the neutral
+// The incision of a breast reduction (docs/MODEL.md, "Incision") on the neutral
 // half cap: points A, B, C, D and planes P1 ("ABD") and P2 ("BCD") from the
 // parameters (a, s, h, d); the resected region; and the remeshed remaining
 // body with its two cut faces tagged.

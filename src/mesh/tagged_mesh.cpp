@@ -1,13 +1,34 @@
 #include "tagged_mesh.hpp"
+#include <cstdlib>
 #include <gmsh.h>
+#include <string>
 #include <stdexcept>
 #include <unordered_map>
 
 namespace breastsim::meshes
 {
+namespace
+{
+/// gmsh's initialisation reads FLTK's preferences and creates
+/// $HOME/.fltk/fltk.org/fltk.prefs when it is missing. A program must not
+/// write into HOME uninvited: while gmsh initialises, HOME names a path that
+/// cannot be created, so FLTK writes nothing; it is restored right after.
+void initialize_gmsh_without_home()
+{
+  const char* home = std::getenv("HOME");
+  const std::string saved = home ? home : "";
+  setenv("HOME", "/dev/null/breastsim-no-home", 1);
+  gmsh::initialize(0, nullptr, false);
+  if (home)
+    setenv("HOME", saved.c_str(), 1);
+  else
+    unsetenv("HOME");
+}
+} // namespace
+
 GmshSession::GmshSession(bool verbose)
 {
-  gmsh::initialize(0, nullptr, false);
+  initialize_gmsh_without_home();
   gmsh::option::setNumber("General.Terminal", verbose ? 1 : 0);
   gmsh::option::setNumber("General.Verbosity", verbose ? 5 : 1);
   gmsh::model::add("breastsim");

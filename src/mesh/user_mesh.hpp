@@ -1,6 +1,6 @@
 #pragma once
 // A user's tetrahedral gmsh mesh (.msh of format 2.2 or 4.x, 4-node or
-// 10-node tetrahedra) as the neutral geometry, in the frame of SPEC.md:
+// 10-node tetrahedra) as the neutral geometry, in the frame of docs/MODEL.md:
 // metres, the chest is the plane y = 0 and the body lies in y >= 0, the half
 // model lies in x >= 0 with its symmetry face on x = 0.
 //
@@ -11,7 +11,7 @@
 //   surface "symmetry"  the cut face of a half model, on the plane x = 0.
 // Every boundary face of the tetrahedra belongs to exactly one of the
 // surfaces. Without a "symmetry" group the mesh is the full breast (x of
-// either sign, no sliding condition; SPEC.md "Full breast"); with it, the
+// either sign, no sliding condition; docs/MODEL.md "Geometry"); with it, the
 // half x >= 0, whose observables (volume, energy, base perimeter) mirror it.
 //
 // Checked on read, each failure an InputError naming geometry.mesh_file, the

@@ -52,7 +52,7 @@ void check_units(const TaggedMesh& m, const UserMeshOrigin& o)
         throw InputError(fmt::format("{}: node {} has a non-finite coordinate {}", o.where, n, m.x[3 * n + i]));
   const double e = extent(m);
   if (e >= 1.0)
-    throw InputError(fmt::format("{}: the mesh spans {:.4g} m; coordinates are in metres (SPEC.md) and a "
+    throw InputError(fmt::format("{}: the mesh spans {:.4g} m; coordinates are in metres (docs/MODEL.md) and a "
                                  "breast spans less than 1 m (a mesh in millimetres? scale it by 0.001)",
                                  o.where, e));
 }
@@ -266,7 +266,7 @@ void check_plane_surface(const TaggedMesh& m, const UserMeshOrigin& o, const std
     for (std::size_t k = 0; k < npf; ++k)
       if (const Vec3 p = node(m, v[k]); std::abs(p[axis]) > tol)
         throw InputError(fmt::format("{}: surface \"{}\": node {} of triangle (gmsh element {}) is off the plane "
-                                     "{} = 0 (|{}| > {:.3g} m); the {} face lies on {} = 0 (SPEC.md)",
+                                     "{} = 0 (|{}| > {:.3g} m); the {} face lies on {} = 0 (docs/MODEL.md)",
                                      o.where, name, point(p), o.facet_elements[f], ax, ax, tol, name, ax));
     const Vec3 a = node(m, v[0]);
     Vec3 n = cross(sub(node(m, v[1]), a), sub(node(m, v[2]), a));
@@ -288,7 +288,7 @@ void check_half_space(const TaggedMesh& m, const UserMeshOrigin& o, double tol)
   for (std::size_t n = 0; n < m.num_nodes(); ++n)
     for (int axis : {0, 1})
       if (m.x[3 * n + axis] < -tol && (axis == 1 || o.half))
-        throw InputError(fmt::format("{}: node {} at {} has {} < 0; {} (SPEC.md)", o.where, n, point(node(m, n)),
+        throw InputError(fmt::format("{}: node {} at {} has {} < 0; {} (docs/MODEL.md)", o.where, n, point(node(m, n)),
                                      axis == 0 ? "x" : "y",
                                      o.half ? "the half model lies in x >= 0 and in front of the chest, y >= 0"
                                             : "the breast lies in front of the chest, y >= 0"));

@@ -1,5 +1,5 @@
 #pragma once
-// Observables of a deformed breast (SPEC.md), computed on the skin nodes:
+// Observables of a deformed breast (docs/MODEL.md), computed on the skin nodes:
 // nipple position, projection (max y), z_min, z_max, base perimeter (full
 // breast), volume (full breast) and total energy (full breast). A half model
 // (with a symmetry face) is mirrored; a full breast is measured as it is.

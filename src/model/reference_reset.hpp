@@ -1,5 +1,5 @@
 #pragma once
-// The final neutral state (SPEC.md): the current deformed configuration
+// The final neutral state (docs/MODEL.md): the current deformed configuration
 // becomes the new stress-free reference. The mesh geometry is moved by the
 // displacement and u is set to zero.
 #include "model.hpp"

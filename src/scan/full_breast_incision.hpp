@@ -1,5 +1,5 @@
 #pragma once
-// The incision (SPEC.md "Incision", "Full breast and patient scans") on a
+// The incision (docs/MODEL.md "Incision", "Full breast and patient scans") on a
 // full breast's own shape: the fitted skin r(d) d (radial_fit.hpp) in the
 // breast frame (nipple on x = 0, chest y = 0, z cranial).
 //   A = (0, y_A, s) on the skin; P1: x = (s - z) tan a and its mirror P1':

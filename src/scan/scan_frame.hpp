@@ -1,5 +1,5 @@
 #pragma once
-// The breast frame of a scan (SPEC.md, "Full breast and patient scans"): y
+// The breast frame of a scan (docs/MODEL.md, "Full breast and patient scans"): y
 // along the outward chest normal, z cranial, x lateral, the origin on the
 // chest plane. The chest plane is fitted through the scan's footprint (the
 // longest open boundary loop of a triangulated skin) or through a second

@@ -1,6 +1,6 @@
 #pragma once
-// Several scans of one breast in different postures, for a calibration
-// (issue 20 item 3): the first is meshed as `scan-model` meshes a scan
+// Several scans of one breast in different postures, for a calibration:
+// the first is meshed as `scan-model` meshes a scan
 // (scan_model.hpp); every further scan is read, checked and fitted the same
 // way (the same refusals, and its robust noise RMS), and its points are
 // mapped into the first scan's breast frame. The scans must share one

@@ -22,7 +22,7 @@ struct InverseOptions
   double tolerance = 1e-6; ///< largest node mismatch |x_s - X - u| accepted [m]
   int max_iterations = 60;
   LoadStepOptions ramp;    ///< load ramp of a forward solve that cannot start from the last u
-  /// Nodes on the chest plane y = 0 (the base, SPEC.md) stay on it: only
+  /// Nodes on the chest plane y = 0 (the base, docs/MODEL.md) stay on it: only
   /// their x and z are updated and measured, so that a spring bed's normal
   /// displacement of the base is not turned into a reference off the chest.
   bool keep_chest_plane = true;

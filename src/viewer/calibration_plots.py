@@ -138,4 +138,8 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except OSError as e:  # a full disk, a folder that cannot be written: one line, no traceback
+        sys.stderr.write(f"breastsim calibration plots: cannot write {e.filename or ''}: {e.strerror or e}\n")
+        sys.exit(1)

@@ -79,4 +79,8 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except OSError as e:  # a full disk, a folder that cannot be written: one line, no traceback
+        sys.stderr.write(f"breastsim diagnose plots: cannot write {e.filename or ''}: {e.strerror or e}\n")
+        sys.exit(1)

@@ -2,7 +2,7 @@
 """Write index.html: a self-contained 3D page of a breastsim result folder.
 
 The page inlines three.js (npm package `three`, installed into
-src/io/viewer/web/node_modules by `.ci/setup`), its OrbitControls, the viewer
+src/viewer/web/node_modules by `.ci/setup`), its OrbitControls, the viewer
 script web/viewer.js and the surface_<posture>.json data of the result folder
 (and of a comparison folder), so it works offline from file:// and fetches
 nothing.
@@ -106,4 +106,8 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except OSError as e:  # a full disk, a folder that cannot be written: one line, no traceback
+        sys.stderr.write(f"breastsim page: cannot write {e.filename or ''}: {e.strerror or e}\n")
+        sys.exit(1)

@@ -14,6 +14,7 @@ Usage: server_checks.py PORT PHASE [ARGS...]
 import io
 import json
 import os
+import socket
 import tarfile
 import sys
 import time
@@ -66,6 +67,69 @@ def refusals(api):
     check(not any(k.lower().startswith("access-control") for k in h), f"preflight not granted ({s})")
     s, _, _ = api.raw("GET", "/api/keys", headers={"Host": "evil.example:80"})
     check(s == 403, f"a Host header of another machine (DNS rebinding) -> 403 ({s})")
+    header_refusals(api.port)
+    slow_clients(api.port)
+
+
+def raw_status(port, request, timeout=10):
+    """Send the bytes `request` on a new connection; the reply's status code (0: none)."""
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout) as c:
+        c.sendall(request)
+        reply = b""
+        try:
+            while b"\r\n" not in reply:
+                chunk = c.recv(4096)
+                if not chunk:
+                    break
+                reply += chunk
+        except (ConnectionResetError, socket.timeout):
+            pass
+    parts = reply.split(b" ", 2)
+    return int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else 0
+
+
+def header_refusals(port):
+    host = f"127.0.0.1:{port}".encode()
+    ok = b"GET /api/keys HTTP/1.1\r\nHost: " + host + b"\r\nConnection: close\r\n\r\n"
+    check(raw_status(port, ok) == 200, "a well-formed raw request -> 200")
+    cases = {
+        "two Host headers, the second foreign":
+            b"GET /api/keys HTTP/1.1\r\nHost: " + host + b"\r\nHost: evil.example\r\nConnection: close\r\n\r\n",
+        "an empty Host": b"GET /api/keys HTTP/1.1\r\nHost: \r\nConnection: close\r\n\r\n",
+        "no Host on HTTP/1.1": b"GET /api/keys HTTP/1.1\r\nConnection: close\r\n\r\n",
+        "two different Content-Length values":
+            b"POST /api/validate HTTP/1.1\r\nHost: " + host + b"\r\nContent-Type: application/json\r\n"
+            b"Content-Length: 2\r\nContent-Length: 40\r\nConnection: close\r\n\r\n{}",
+        "Content-Length with Transfer-Encoding":
+            b"POST /api/validate HTTP/1.1\r\nHost: " + host + b"\r\nContent-Type: application/json\r\n"
+            b"Content-Length: 2\r\nTransfer-Encoding: chunked\r\nConnection: close\r\n\r\n{}",
+        "10,000 header lines":
+            b"GET /api/keys HTTP/1.1\r\nHost: " + host + b"\r\n"
+            + b"".join(b"X-H%d: v\r\n" % i for i in range(10000)) + b"Connection: close\r\n\r\n",
+    }
+    for what, request in cases.items():
+        s = raw_status(port, request)
+        check(s == 400, f"{what} -> 400 ({s})")
+
+
+def slow_clients(port, n=30):
+    """n connections that trickle their headers do not hold up a normal request."""
+    slow = []
+    for _ in range(n):
+        c = socket.create_connection(("127.0.0.1", port), timeout=10)
+        c.sendall(b"GET /api/keys HTTP/1.1\r\nHo")
+        slow.append(c)
+    try:
+        time.sleep(0.5)
+        for c in slow:  # one more byte each: still sending, never finishing
+            c.sendall(b"s")
+        t0 = time.monotonic()
+        s, _, _ = Api(port, timeout=10).raw("GET", "/api/keys")
+        took = time.monotonic() - t0
+        check(s == 200 and took < 2.0, f"a normal request beside {n} slow clients -> {s} in {took:.2f} s")
+    finally:
+        for c in slow:
+            c.close()
 
 
 def sweep_refusals(api):

@@ -121,7 +121,7 @@ for pa, pb in zip(a["final"]["parameters"], b["final"]["parameters"]):
     assert abs(pa["value"] / pb["value"] - 1) < 1e-3, (pa, pb)
 print("mpirun -n 2: same verdict, mu", a["final"]["parameters"][0]["value"], b["final"]["parameters"][0]["value"])
 PY
-  expect_fail "cannot be read" "$work/missing.json"
+  expect_fail "does not exist" "$work/missing.json"
   expect_fail "unknown candidate physics 'dark_matter'" "$work/recording.json" --candidates dark_matter
   expect_fail "alpha" "$work/recording.json" --alpha 2
   expect_fail "--order = 3 is out of range" "$work/recording.json" --order 3

@@ -36,8 +36,9 @@ refuse() {
   n=$((n + 1))
   local before; before=$(snapshot)
   [ "${SNAPSHOT:-1}" = 1 ] || before=$(sentinels)
-  "$BIN" -q "$@" >"$LOG/$name.out" 2>"$LOG/$name.err"
+  timeout 120 "$BIN" -q "$@" >"$LOG/$name.out" 2>"$LOG/$name.err"
   local code=$?
+  if [ "$code" -eq 124 ]; then fail "$name" "did not end within 120 s"; return; fi
   if [ "$code" -ne 2 ]; then fail "$name" "exit code $code (expected 2)"; return; fi
   if ! grep -qF -- "$frag" "$LOG/$name.err"; then fail "$name" "message lacks '$frag'"; return; fi
   local after; after=$(snapshot)
@@ -50,7 +51,7 @@ refuse() {
 accept() {
   local name="$1"; shift
   n=$((n + 1))
-  "$BIN" -q "$@" >"$LOG/$name.out" 2>"$LOG/$name.err"
+  timeout 300 "$BIN" -q "$@" >"$LOG/$name.out" 2>"$LOG/$name.err"
   local code=$?
   if [ "$code" -ne 0 ]; then fail "$name" "exit code $code (expected 0)"; return 1; fi
   if [ "$(sentinels)" != "$SENT" ]; then fail "$name" "a sentinel file changed"; return 1; fi
@@ -130,7 +131,7 @@ refuse name_too_long "is 101 bytes long" simulate "$CASE" --set "case.name=$(pri
 # Single-file outputs: only files breastsim wrote are replaced.
 refuse measure_user_file "was not written by breastsim" measure "$CASE" --out notes.txt
 refuse record_user_file "was not written by breastsim" record "$CASE" --out notes.txt
-refuse measure_into_folder "is not a regular file" measure "$CASE" --out mydata
+refuse measure_into_folder "is a folder, not a regular file" measure "$CASE" --out mydata
 refuse record_over_input "an input file of this run" record "$CASE" --out "$CASE"
 refuse checkpoint_user_file "the checkpoint" calibrate "$CASES/measurements_example.json" \
   --out cal --checkpoint notes.txt
@@ -141,7 +142,7 @@ refuse view_unmarked "has no .breastsim-result marker" view mydata
 "$BIN" -q simulate "$CASE" --set geometry.mesh_size=0.003 --out busy >"$LOG/busy.out" 2>&1 &
 busy=$!
 for _ in $(seq 600); do [ -e "$W/.busy.breastsim-lock" ] && break; sleep 0.1; done
-SNAPSHOT=0 refuse second_run_locked "another breastsim run is writing there" simulate "$CASE" --out busy
+SNAPSHOT=0 refuse second_run_locked "'$W/busy': another breastsim run is writing there" simulate "$CASE" --out busy
 kill -TERM "$busy"; wait "$busy"; code=$?
 check sigterm_exit "SIGTERM exits 143 (got $code)" test "$code" -eq 143
 check sigterm_clean "SIGTERM leaves no staging folder, lock or result" \
@@ -173,7 +174,7 @@ check stale_unmarked_kept "an unmarked *.partial-* folder was kept" test -f "$W/
 kill "$live" 2>/dev/null; wait "$live" 2>/dev/null
 
 # ---------------------------------------------------------------- case files
-refuse case_is_directory "is not a regular file" simulate "$W/cases"
+refuse case_is_directory "is a folder, not a regular file" simulate "$W/cases"
 python3 -c "print('a' + '.a' * 50000 + ' = 1')" > "$W/deep_dotted.toml"
 refuse deep_dotted_key "keys nested deeper than 16 levels" simulate "$W/deep_dotted.toml"
 python3 -c "print('[' + '.'.join(['t'] * 50000) + ']')" > "$W/deep_table.toml"
@@ -237,8 +238,8 @@ printf '{"units": "SI", "postures": [{"name": "standing", "nipple_y": 1e999}]}\n
 refuse json_huge_measurement "'huge.json' holds a number beyond the range of a double" calibrate huge.json --out cal
 printf '{"format": "breastsim-recording/1", "postures": [], "noise_sigma": 1e999}\n' > "$W/huge_rec.json"
 refuse json_huge_recording "'huge_rec.json' holds a number beyond the range" diagnose huge_rec.json --out diag
-refuse json_directory "is a folder, not a JSON file" calibrate "$W/cases" --out cal
-refuse json_missing "cannot be read" calibrate "$W/missing.json" --out cal
+refuse json_directory "is a folder, not a regular file" calibrate "$W/cases" --out cal
+refuse json_missing "does not exist" calibrate "$W/missing.json" --out cal
 
 # ---------------------------------------------------------------- command line
 refuse cli_unknown_subcommand "unknown subcommand 'simulat'" simulat "$CASE"
@@ -246,6 +247,128 @@ refuse cli_unknown_option "--bogus" simulate "$CASE" --bogus
 refuse cli_missing_case "case is required" simulate
 refuse cli_no_subcommand "A subcommand is required"
 refuse cli_bad_levels "--levels" converge "$CASE" --levels 9
+
+# ---------------------------------------------------------------- links and markers
+# Nothing is written through a symbolic link: a picture replaced by a link,
+# a link where the lock goes, a marker that lists a path outside its folder.
+accept view_source simulate "$CASE" "${QUICK[@]}" --out viewed
+ln -s "$S/sentinel/keep.txt" "$W/viewed/overview_link.png"
+refuse view_foreign_link "'overview_link.png', which is a symbolic link" view viewed
+rm "$W/viewed/overview_link.png"
+if [ -f "$W/viewed/summary.json" ]; then
+  mv "$W/viewed/summary.json" "$W/summary.saved"
+  ln -s "$S/sentinel/keep.txt" "$W/viewed/summary.json"
+  refuse view_listed_link "'summary.json', which is a symbolic link" view viewed
+  rm "$W/viewed/summary.json"; mv "$W/summary.saved" "$W/viewed/summary.json"
+fi
+ln -s "$S/sentinel/lock-target" "$W/.linklock.breastsim-lock"
+refuse lock_is_symlink "'.linklock.breastsim-lock' beside it is a symbolic link" simulate "$CASE" --out linklock
+check lock_target_absent "the lock's link target was not created" test ! -e "$S/sentinel/lock-target"
+rm "$W/.linklock.breastsim-lock"
+mkfifo "$W/.fifolock.breastsim-lock"
+refuse lock_is_fifo "is a named pipe (FIFO), not breastsim's lock file" simulate "$CASE" --out fifolock
+rm "$W/.fifolock.breastsim-lock"
+mkdir -p "$W/absmarker"
+echo '{"format": "breastsim result folder", "state": "complete", "files": ["/x"]}' > "$W/absmarker/.breastsim-result"
+refuse marker_absolute_path "lists '/x', which is not a path inside the folder" simulate "$CASE" --out absmarker
+mkdir -p "$W/upmarker"
+echo '{"format": "breastsim result folder", "state": "complete", "files": ["../../x"]}' > "$W/upmarker/.breastsim-result"
+refuse marker_parent_path "lists '../../x', which is not a path inside the folder" simulate "$CASE" --out upmarker
+mkdir -p "$W/linkmarker"; ln -s "$S/sentinel/keep.txt" "$W/linkmarker/.breastsim-result"
+refuse marker_is_link "its .breastsim-result is a symbolic link" simulate "$CASE" --out linkmarker
+ln -s "$W/nowhere" "$W/dangling"
+refuse out_dangling_link "it is a symbolic link to nothing" simulate "$CASE" --out dangling
+mkfifo "$W/fifo"
+refuse out_fifo "it is a named pipe (FIFO)" simulate "$CASE" --out fifo
+ln -s "$S/sentinel/keep.txt" "$W/measure_link.json"
+refuse measure_out_link "it is a symbolic link to a regular file" measure "$CASE" --out measure_link.json
+ln -s loop_b.toml "$W/loop_a.toml"; ln -s loop_a.toml "$W/loop_b.toml"
+refuse case_symlink_loop "is a loop of symbolic links" simulate "$W/loop_a.toml"
+ln -s "$W/nowhere.toml" "$W/dangling.toml"
+refuse case_dangling_link "is a symbolic link to nothing" simulate "$W/dangling.toml"
+mkfifo "$W/case_fifo.toml"
+refuse case_fifo "is a named pipe (FIFO), not a regular file" simulate "$W/case_fifo.toml"
+# A file of the user's with the staging folder's name (the pid is known: exec).
+printf '#!/bin/sh\necho "user data" > "%s/held.partial-$$"\nexec "%s" "$@"\n' "$W" "$BIN" > "$LOG/held.sh"
+chmod +x "$LOG/held.sh"
+BIN="$LOG/held.sh" SNAPSHOT=0 refuse staging_name_taken "'$W/held': 'held.partial-" simulate "$CASE" --out held
+check staging_name_taken_kept "the user's file with the staging name is untouched" \
+  bash -c "grep -qx 'user data' '$W'/held.partial-*"
+rm -f "$W"/held.partial-*
+
+# ---------------------------------------------------------------- PETSc options that touch files
+refuse petsc_log_view_file "-log_view :" simulate "$CASE" --petsc-options "-log_view :$S/sentinel/keep.txt"
+refuse petsc_viewer_filename "-viewer_binary_filename is not accepted" simulate "$CASE" --petsc-options "-viewer_binary_filename $W/out.bin"
+refuse petsc_options_file "-options_file is not accepted" simulate "$CASE" --petsc-options "-options_file /dev/zero"
+refuse petsc_history "-history is not accepted" simulate "$CASE" --petsc-options "-history $W/h.txt"
+refuse petsc_malloc_dump "-malloc_dump" simulate "$CASE" --petsc-options "-malloc_dump $W/m.txt"
+refuse petsc_binary_view "-ksp_view binary" simulate "$CASE" --petsc-options "-ksp_view binary"
+refuse petsc_monitor_file "-ksp_monitor" simulate "$CASE" --petsc-options "-ksp_monitor ascii:$W/mon.txt"
+refuse petsc_debugger "-start_in_debugger is not accepted" simulate "$CASE" --petsc-options "-start_in_debugger"
+refuse petsc_case_file_option "key 'solver.petsc_options'" simulate "$CASE" --set "solver.petsc_options=-log_view :$W/log.txt"
+accept petsc_stdout_viewer simulate "$CASE" "${QUICK[@]}" --petsc-options "-ksp_converged_reason -ksp_view ::ascii_info" --out petscok
+check petsc_stdout_viewer_printed "the ascii viewer printed to standard output" grep -q "KSP Object" "$LOG/petsc_stdout_viewer.out"
+
+# ---------------------------------------------------------------- JSON bounds and duplicates
+printf '{"units": "mm", "units": "SI", "postures": []}\n' > "$W/dup_units.json"
+refuse json_duplicate_key "the key 'units' appears twice" calibrate dup_units.json --out cal
+printf '{"format": "breastsim-recording/1", "noise_sigma": 0.001, "noise_sigma": 0.002, "postures": []}\n' > "$W/dup_sigma.json"
+refuse json_duplicate_recording_key "the key 'noise_sigma' appears twice" diagnose dup_sigma.json --out diag
+python3 -c "
+import sys
+sys.stdout.write('{\"format\": \"breastsim-recording/1\", \"noise_sigma\": 0.001, \"postures\": [{\"name\": \"standing\", \"theta_deg\": 0, \"points\": [')
+sys.stdout.write(','.join(['[0.01,0.01,0.01]'] * 1000001))
+sys.stdout.write(']}]}')" > "$W/many_points.json"
+refuse recording_too_many_points "allowed at most 1000000 per posture" diagnose many_points.json --out diag
+rm "$W/many_points.json"
+truncate -s 200M "$W/huge_file.json"
+refuse json_file_too_large "is 200 MB: allowed at most 128 MB" diagnose huge_file.json --out diag
+rm "$W/huge_file.json"
+refuse set_long_value "key 'tissue.mu'" simulate "$CASE" --set "tissue.mu=$(head -c 100000 /dev/zero | tr '\0' '7')x"
+check set_long_value_short "the 100 kB value is not echoed whole" test "$(wc -c < "$LOG/set_long_value.err")" -lt 1000
+
+# ---------------------------------------------------------------- signals and broken streams
+# SIGHUP (a closed terminal) ends the run like SIGTERM: exit 129, nothing left.
+"$BIN" -q simulate "$CASE" --set geometry.mesh_size=0.003 --out hup >"$LOG/hup.out" 2>&1 &
+hup=$!
+for _ in $(seq 600); do ls "$W" | grep -q 'hup.partial' && break; sleep 0.1; done
+kill -HUP "$hup"; wait "$hup"; code=$?
+check sighup_exit "SIGHUP exits 129 (got $code)" test "$code" -eq 129
+check sighup_clean "SIGHUP leaves no staging folder, lock or result" bash -c "! ls -a '$W' | grep -q hup"
+# A reader that went away (| true): SIGPIPE ends the run, exit 141, nothing left behind.
+( "$BIN" simulate "$CASE" --set geometry.mesh_size=0.004 --out piped 2>"$LOG/pipe.err"; echo $? > "$LOG/pipe.code" ) | true
+code=$(cat "$LOG/pipe.code")
+check sigpipe_exit "a closed stdout exits 141 (got $code)" test "$code" -eq 141
+check sigpipe_clean "a closed stdout leaves no staging folder or lock" \
+  bash -c "! ls -a '$W' | grep -q 'piped.partial\|piped.breastsim-lock'"
+check sigpipe_no_petsc "no PETSc or MPI abort text" bash -c "! grep -q 'PETSC ERROR\|MPI_ABORT' '$LOG/pipe.err'"
+# Standard output on a full device: one line, exit 1, no PETSc stack.
+n=$((n + 1))
+"$BIN" -q simulate "$CASE" "${QUICK[@]}" --out devfull >/dev/full 2>"$LOG/devfull.err"; code=$?
+if [ "$code" -ne 1 ]; then fail devfull "exit code $code (expected 1)"
+elif ! grep -q "cannot write to standard output" "$LOG/devfull.err"; then fail devfull "message lacks 'cannot write to standard output'"
+elif grep -q "PETSC ERROR" "$LOG/devfull.err"; then fail devfull "PETSc's stack was printed"
+else echo "ok   devfull: $(head -c 120 "$LOG/devfull.err")"; fi
+# A working directory that was deleted; a $TMPDIR that does not exist; no orted on PATH.
+mkdir -p "$W/gone"
+n=$((n + 1))
+(cd "$W/gone" && rmdir "$W/gone" && "$BIN" -q keys >/dev/null 2>"$LOG/gone.err"); code=$?
+if [ "$code" -ne 1 ] || ! grep -q "working directory cannot be read" "$LOG/gone.err"; then fail cwd_deleted "exit $code: $(head -c 200 "$LOG/gone.err")"
+else echo "ok   cwd_deleted: $(head -c 120 "$LOG/gone.err")"; fi
+n=$((n + 1))
+TMPDIR="$S/no_such_tmp/x" "$BIN" -q keys >/dev/null 2>"$LOG/tmpdir.err"; code=$?
+if [ "$code" -ne 1 ] || ! grep -q "TMPDIR" "$LOG/tmpdir.err"; then fail tmpdir_missing "exit $code: $(head -c 200 "$LOG/tmpdir.err")"
+elif [ -e "$S/no_such_tmp" ]; then fail tmpdir_missing "the missing TMPDIR was created"
+else echo "ok   tmpdir_missing: $(head -c 120 "$LOG/tmpdir.err")"; fi
+check no_orted_on_path "runs alone without orted on PATH" bash -c "PATH=/nonexistent '$BIN' -q keys >/dev/null 2>'$LOG/path.err'"
+# A file-size limit (ulimit -f): the write fails with a message, no core dump, nothing left.
+n=$((n + 1))
+(ulimit -f 64; "$BIN" -q simulate "$CASE" --set postures.names=standing --set geometry.mesh_size=0.005 --out fsize >/dev/null 2>"$LOG/fsize.err"); code=$?
+if [ "$code" -ne 1 ]; then fail file_size_limit "exit code $code (expected 1)"
+elif ! grep -q "File too large" "$LOG/fsize.err"; then fail file_size_limit "message lacks 'File too large': $(head -c 300 "$LOG/fsize.err")"
+elif grep -q "HDF5-DIAG" "$LOG/fsize.err"; then fail file_size_limit "HDF5's error stack was printed"
+elif ls -a "$W" | grep -q "fsize"; then fail file_size_limit "a staging folder or result was left"
+else echo "ok   file_size_limit: $(grep -o "cannot write.*" "$LOG/fsize.err" | head -1 | head -c 160)"; fi
 
 # ---------------------------------------------------------------- a full disk
 # In a private mount namespace (root only), a 256 kB tmpfs holds the output:
@@ -260,6 +383,7 @@ if unshare -m true 2>/dev/null; then
   if [ "$(cat "$LOG/disk.code")" = 0 ]; then fail disk_full "the run succeeded on a 256 kB disk"
   elif ! grep -q "displacement_standing.h5': no space left on device" "$LOG/disk.err"; then fail disk_full "message lacks 'no space left on device'"
   elif grep -q partial "$LOG/disk.ls"; then fail disk_full "a staging folder was left on the full disk"
+  elif grep -q "HDF5-DIAG\|Traceback" "$LOG/disk.err"; then fail disk_full "HDF5's error stack or a Python traceback was printed"
   else echo "ok   disk_full: $(grep -o "cannot write.*" "$LOG/disk.err" | head -1)"; fi
   rmdir "$W/tiny"
 else
@@ -270,6 +394,9 @@ check nothing_left_behind "no staging folders or lock files remain" \
   bash -c "! find '$S' -name '*.partial-*' -newer '$S/sentinel/keep.txt' | grep -v 'stale.partial' | grep -q . \
            && ! find '$S' -name '*.breastsim-lock' | grep -q ."
 check sentinels_intact "the sentinel files are unchanged" test "$(sentinels)" = "$SENT"
+check no_fltk_prefs "nothing was written into HOME by gmsh/FLTK" test ! -e "$HOME/.fltk"
+check no_internal_prefixes "no message carries 'filesystem error:' or '[json.exception' prefixes" \
+  bash -c "! grep -l 'filesystem error:\|\[json.exception' '$LOG'/*.err"
 
 echo "$((n - fails)) passed, $fails failed"
 [ "$fails" -eq 0 ]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# P2 surgery on 2 MPI ranks (issue 19, item 1): the default incision on the
+# P2 surgery on 2 MPI ranks: the default incision on the
 # P2 half cap (standing, 10 mm mesh: 1688 cells) closes every suture to
 # surgery.max_gap (1e-4 m) on 2 ranks, and agrees with the serial run:
 # resected volume to 1e-9 relative, post-operative nipple (every posture,

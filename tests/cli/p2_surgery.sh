@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# P2 surgery closes (issue 19, item 1): the default incision on the P2 half
+# P2 surgery closes: the default incision on the P2 half
 # cap (standing) closes every suture to surgery.max_gap and solves the
 # post-operative posture; its resected volume and post-operative nipple
 # agree with P1 on the same mesh size (within 1 % and 3 mm: the P1 mesh's
