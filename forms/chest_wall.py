@@ -1,5 +1,5 @@
 """Chest-wall contact: the skin may not pass behind the chest (the plane
-y = 0, SPEC.md frame). A penalty on the deformed skin's penetration,
+y = 0, docs/MODEL.md frame). A penalty on the deformed skin's penetration,
 
     E_chest = int_skin k_w/2 max(0, -(X_y + u_y))^2 dA,
 

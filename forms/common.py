@@ -4,7 +4,7 @@ The element degree is chosen by the BREASTSIM_DEGREE environment variable
 (set by CMake for each compiled variant). Meshes are isoparametric: the
 coordinate element has the same degree as the displacement.
 
-Conventions (SPEC.md): reference (neutral) configuration X, displacement u,
+Conventions (docs/MODEL.md): reference (neutral) configuration X, displacement u,
 deformed position f(X) = X + u, F = I + grad u.
 """
 import os

@@ -11,7 +11,7 @@ axis and half-depth b_l along it. gland_core.py is the other form of the
 gland: a sharp cylinder through the whole depth, skin to chest. m_l = 0
 reproduces the model without a gland. Not in the diagnosis' default
 library (`--candidates` names it): on the gland-form set it changed no
-verdict (docs/DIAGNOSE.md, "Measured 2026-12-06, afternoon").
+verdict (docs/DIAGNOSE.md).
 """
 from common import Constant, X, candidate, domain, dx, F, J, neo_hooke, param
 from tissue import mu, lmbda

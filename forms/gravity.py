@@ -1,7 +1,7 @@
 """Mass forces: the potential of gravity in the body frame.
 
     E_gravity = - int_B rho * load * g_vec . u dV
-g_vec is set by the posture (SPEC.md: g_vec = -g (cos(theta) e_z + sin(theta) e_y));
+g_vec is set by the posture (docs/MODEL.md: g_vec = -g (cos(theta) e_z + sin(theta) e_y));
 load in [0, 1] is the load factor driven by the load stepping.
 """
 from common import Constant, domain, dot, dx_load, u, fit_alias, param

@@ -1,6 +1,6 @@
 """Skin: a 2D neo-Hookean membrane of thickness t_s on the outer surface.
 
-With the reference normal N and P = I - N (x) N (SPEC.md):
+With the reference normal N and P = I - N (x) N (docs/MODEL.md):
     C_s = P F^T F P,  J_s = |det(F) F^{-T} N|  (area ratio, Nanson),
     W_s = mu_s/2 (tr C_s - 2 - 2 ln J_s) + lambda_s/2 (J_s - 1)^2,
     E_skin = int_skin t_s W_s dA.

@@ -5,7 +5,7 @@ skin point is tied to an anchor on the chest wall that lies d_a above it,
     A(X) = (X_x, 0, X_z + d_a),  x = X + u,  w(X) = 1 where Z > 0, else 0,
 
 k_c [Pa/m] per unit reference skin area, d_a [m] the anchor's rise on the
-chest wall (y = 0, SPEC.md frame; Z > 0 is the upper pole when standing).
+chest wall (y = 0, docs/MODEL.md frame; Z > 0 is the upper pole when standing).
 A cable resists only its lengthening: sagging away from the chest and down
 is held, moving toward the anchor is free (suspensory_ligament.py is the
 zero-length spring form, which resists every displacement). k_c = 0

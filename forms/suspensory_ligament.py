@@ -3,7 +3,7 @@ toward its neutral position by a bed of springs,
 
     E_lig = int_skin k_l/2 w(X) |u|^2 dA,   w(X) = 1 where Z > 0, else 0,
 
-k_l [Pa/m] per unit reference skin area (SPEC.md frame: Z > 0 is the upper
+k_l [Pa/m] per unit reference skin area (docs/MODEL.md frame: Z > 0 is the upper
 pole when standing). k_l = 0 reproduces the model without ligaments.
 """
 from common import Constant, candidate, domain, dot, ds, u, param, upper_pole

@@ -1,11 +1,11 @@
-"""General tissue-to-tissue suture (knitting condition, SPEC.md eq. (3)):
+"""General tissue-to-tissue suture (knitting condition, docs/MODEL.md eq. (3)):
 
     f(g(p)) = f(p)   for p on face suture_a, g(p) on face suture_b,
     g(X) = G X + t   (G = tissue_map_matrix row-major, t = tissue_map_shift).
 
 UFL cannot evaluate u at g(X). The partner field w_tissue (a displacement-like
 Coefficient in the space of u) holds w = P u: P is the sparse interpolation
-matrix, built in C++ (src/model/model/partner_field.cpp) from the element basis, whose
+matrix, built in C++ (src/model/partner_field.cpp) from the element basis, whose
 row for the node X_i of face A evaluates u at g(X_i). Between the nodes w is
 interpolated like u, so on face A
     f(g(X)) - f(X) = g(X) + w - X - u.
