@@ -92,7 +92,7 @@ Recording synthetic_recording(const Config& c, const RecordingOptions& o, MPI_Co
     rec.known[name] = truth.number(fit_alias(name).key);
   for (const auto& p : requested_postures(truth))
   {
-    log::info("recording: solving posture '{}' (truth mesh {} mm)", p.name, 1e3 * h);
+    log::info("recording: solving posture '{}' (truth mesh {:.3g} mm)", p.name, 1e3 * h);
     const Observables ob = solve_posture(model, newton, probe, p, truth).observables;
     const SkinSurface s = gather_skin_surface(model); // complete on rank 0
     RecordedPosture q;

@@ -10,6 +10,9 @@ void OutputOptions::declare(std::vector<KeyInfo>& keys)
                             "this machine's memory); the estimate is in the message"));
   keys.push_back(boolean_key("output.xdmf", d.xdmf, "write displacement fields as XDMF (ParaView)"));
   keys.push_back(boolean_key("output.vtk", d.vtk, "also write VTK files (native P2)"));
+  keys.push_back(choice_key("output.pictures", d.pictures, {"none", "full"},
+                            "PNG pictures and the 3D page of each posture (matplotlib, about "
+                            "1.5 s a picture): none, or full; `breastsim view DIR` makes them later"));
 }
 
 OutputOptions OutputOptions::from(const Config& c)
@@ -18,6 +21,7 @@ OutputOptions OutputOptions::from(const Config& c)
   o.max_memory_gb = c.number("solver.max_memory_gb");
   o.xdmf = c.flag("output.xdmf");
   o.vtk = c.flag("output.vtk");
+  o.pictures = c.text("output.pictures");
   return o;
 }
 } // namespace breastsim

@@ -1,5 +1,6 @@
 #include "schema.hpp"
 #include "errors.hpp"
+#include "strings.hpp"
 #include <algorithm>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -102,13 +103,19 @@ const KeyInfo& key_info(const std::string& key)
   for (const auto& k : schema())
     if (k.key == key)
       return k;
-  // Suggest keys of the same section.
-  std::vector<std::string> near;
+  // Suggest the likely misspelling, else the keys of the same section.
+  std::vector<std::string> all, near;
   const std::string section = key.substr(0, key.find('.'));
   for (const auto& k : schema())
+  {
+    all.push_back(k.key);
     if (k.key.rfind(section + ".", 0) == 0)
       near.push_back(k.key);
-  throw InputError(fmt::format("unknown key '{}'{}", key,
+  }
+  if (const std::string guess = closest_match(key, all); !guess.empty())
+    throw InputError(fmt::format("unknown key '{}': did you mean '{}'? (see `breastsim keys`)",
+                                 shorten(key), guess));
+  throw InputError(fmt::format("unknown key '{}'{}", shorten(key),
                                near.empty() ? std::string(" (see `breastsim keys`)")
                                             : fmt::format(" (keys of [{}]: {})", section,
                                                           fmt::join(near, ", "))));

@@ -178,9 +178,16 @@ int main(int argc, char** argv)
   if (const std::string sub = unknown_subcommand(argc, argv, app); !sub.empty())
   {
     std::string names;
+    std::vector<std::string> all;
     for (const auto& c : commands)
+    {
       names += (names.empty() ? "" : ", ") + c.app->get_name();
-    std::cerr << "breastsim: unknown subcommand '" << sub << "' (one of: " << names << ")\n";
+      all.push_back(c.app->get_name());
+    }
+    const std::string guess = closest_match(sub, all);
+    std::cerr << "breastsim: unknown subcommand '" << shorten(sub) << "'"
+              << (guess.empty() ? "" : ": did you mean '" + guess + "'?") << " (one of: " << names
+              << ")\n";
     return 2;
   }
   try
@@ -189,8 +196,14 @@ int main(int argc, char** argv)
   }
   catch (const CLI::ParseError& e)
   {
-    const int code = app.exit(e); // prints help, or the error with a usage hint
-    return code == 0 ? 0 : 2;     // every command-line error is bad input
+    if (e.get_exit_code() == 0)
+      return app.exit(e); // --help
+    // Every command-line error is bad input, said as breastsim says it.
+    std::cerr << "breastsim: input error: " << bounded(e.what()) << " (see `breastsim "
+              << (app.get_subcommands().empty() ? std::string("--help")
+                                                : app.get_subcommands().front()->get_name() + " --help")
+              << "`)\n";
+    return 2;
   }
 
   if (const std::string problem = environment_problem(); !problem.empty())

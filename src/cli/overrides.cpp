@@ -3,6 +3,7 @@
 #include "petsc.hpp"
 #include "petsc_option_rules.hpp"
 #include "strings.hpp"
+#include "output_options.hpp"
 #include "solver_options.hpp"
 #include <fmt/format.h>
 #include <petscksp.h>
@@ -115,5 +116,11 @@ std::filesystem::path claim_file(const std::string& file, const std::vector<std:
                                  const std::string& what)
 {
   return claim_output_file(file, rules_for(false, inputs), what);
+}
+std::string pictures_hint(const Config& c, const std::filesystem::path& dir)
+{
+  if (OutputOptions::from(c).pictures_on())
+    return "";
+  return fmt::format("pictures and the 3D page: breastsim view {}\n", dir.string());
 }
 } // namespace breastsim::cli

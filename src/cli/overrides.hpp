@@ -35,4 +35,7 @@ OutputTarget claim_output(const OutputOption& o, const std::string& default_out,
 /// Claim a single output file (measurements, recording, checkpoint).
 std::filesystem::path claim_file(const std::string& file, const std::vector<std::string>& inputs,
                                  const std::string& what);
+/// "pictures and the 3D page: breastsim view DIR" when the case made none
+/// (output.pictures = none), else "".
+std::string pictures_hint(const Config& c, const std::filesystem::path& dir);
 } // namespace breastsim::cli

@@ -39,7 +39,8 @@ Command add_simulate_command(CLI::App& root)
                 std::cout << newton_tables(res.postures);
               std::cout << observables_table(res.postures);
               std::cout << "results written to " << out.path().string()
-                        << "/ (summary.json, case.resolved.toml, XDMF)\n";
+                        << "/ (summary.json, case.resolved.toml, XDMF)\n"
+                        << pictures_hint(c, out.path());
             }
             return 0;
           }};

@@ -2,6 +2,8 @@
 // post-operative postures.
 #include "log.hpp"
 #include "case_options.hpp"
+#include "fit_parameters.hpp"
+#include <fmt/format.h>
 #include "full_breast_surgery.hpp"
 #include "surgery.hpp"
 #include "command.hpp"
@@ -11,6 +13,18 @@
 
 namespace breastsim::cli
 {
+namespace
+{
+/// The resected tissue's weight, as the planning app reports it:
+/// resected volume (the whole breast) times the tissue's density.
+std::string resected_weight_line(const Config& c, double resected_volume_m3)
+{
+  const double rho = c.number(calibration::fit_alias("rho").key);
+  return fmt::format("resected weight {:.0f} g (this breast; {:.1f} cm^3 at {:.0f} kg/m^3)\n",
+                     1e3 * resected_volume_m3 * rho, 1e6 * resected_volume_m3, rho);
+}
+} // namespace
+
 Command add_surgery_command(CLI::App& root)
 {
   struct Options
@@ -38,10 +52,11 @@ Command add_surgery_command(CLI::App& root)
             {
               auto r = full_breast_surgery(c, out, MPI_COMM_WORLD);
               if (log::is_root())
-                std::cout << surgery_table(r.base)
+                std::cout << surgery_table(r.base) << resected_weight_line(c, r.base.resected_volume)
                           << fmt::format("largest gaps: keel faces {:.4f} mm, P2 face to the chest {:.4f} mm\n",
                                          1e3 * r.gap_tissue, 1e3 * r.gap_chest)
-                          << "results written to " << out.path().string() << "/\n";
+                          << "results written to " << out.path().string() << "/\n"
+                          << pictures_hint(c, out.path());
               return 0;
             }
             auto r = surgery(c, out, MPI_COMM_WORLD);
@@ -50,7 +65,8 @@ Command add_surgery_command(CLI::App& root)
               if (spdlog::should_log(spdlog::level::debug)) // -v
                 std::cout << newton_tables(r.pre, "pre-operative: ")
                           << newton_tables(r.post, "post-operative: ");
-              std::cout << surgery_table(r) << "results written to " << out.path().string() << "/\n";
+              std::cout << surgery_table(r) << resected_weight_line(c, r.resected_volume) << "results written to " << out.path().string() << "/\n"
+                        << pictures_hint(c, out.path());
             }
             return 0;
           }};

@@ -45,12 +45,19 @@ Command add_view_command(CLI::App& root)
             check_picture_tools(MPI_COMM_WORLD);
             const auto target = OutputTarget::claim(dir.string(), rules, MPI_COMM_WORLD);
             OutputDir staging(target, MPI_COMM_WORLD);
-            render_pictures(dir, {o->compare, o->size, staging.path()}, MPI_COMM_WORLD);
-            write_view_page(dir, o->compare, MPI_COMM_WORLD, staging.path() / "index.html");
+            const bool surgery = o->compare.empty() && is_surgery_result(dir);
+            if (surgery) // pre-op, post-op against pre-op, and the page in postop/
+              render_surgery_pictures(dir, {"", o->size, staging.path()}, MPI_COMM_WORLD);
+            else
+            {
+              render_pictures(dir, {o->compare, o->size, staging.path()}, MPI_COMM_WORLD);
+              write_view_page(dir, o->compare, MPI_COMM_WORLD, staging.path() / "index.html");
+            }
             staging.commit_files(); // the marker lists the pictures too
             if (log::is_root())
             {
-              const auto page = std::filesystem::absolute(o->result_dir) / "index.html";
+              const auto page = std::filesystem::absolute(o->result_dir)
+                                / (surgery ? "postop/index.html" : "index.html");
               std::cout << "pictures written to " << o->result_dir
                         << "/ (view_<posture>.png, overview.png"
                         << (o->compare.empty() ? "" : ", compare_<posture>.png") << ")\n"

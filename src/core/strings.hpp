@@ -1,5 +1,6 @@
 #pragma once
 // Small text helpers shared by the case reader and the command line.
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -28,5 +29,42 @@ inline std::string shorten(const std::string& text, std::size_t max = 80)
   if (text.size() <= max)
     return text;
   return text.substr(0, max) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+} // namespace breastsim
+
+namespace breastsim
+{
+/// The candidate closest to `word` by edit distance (insertions, deletions,
+/// substitutions), if it is close enough to be a likely misspelling: at most
+/// a third of the word's length, and at least 1.
+inline std::string closest_match(const std::string& word, const std::vector<std::string>& candidates)
+{
+  auto distance = [](const std::string& a, const std::string& b)
+  {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j)
+      row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
+    {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j)
+      {
+        const std::size_t up = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+        diagonal = up;
+      }
+    }
+    return row[b.size()];
+  };
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(1, word.size() / 3) + 1;
+  for (const auto& c : candidates)
+    if (const std::size_t d = distance(word, c); d < best_distance)
+    {
+      best = c;
+      best_distance = d;
+    }
+  return best;
 }
 } // namespace breastsim

@@ -1,5 +1,6 @@
 #include "output.hpp"
 #include "errors.hpp"
+#include "input_file.hpp"
 #include "interrupt.hpp"
 #include "log.hpp"
 #include "on_root.hpp"
@@ -146,19 +147,26 @@ void OutputDir::commit_files()
           {
             if (auto why = refusal_reason(_final, _rules)) // changed meanwhile?
               throw InputError(*why);
-            std::vector<fs::path> staged;
-            for (const auto& e : fs::directory_iterator(_staging))
-              if (e.path().filename() != result_marker)
-                staged.push_back(e.path().filename());
-            for (const auto& name : staged) // all checked before anything moves
+            std::vector<fs::path> staged; // relative paths of the staged files
+            for (const auto& e : fs::recursive_directory_iterator(_staging))
+              if (e.is_regular_file() && e.path().filename() != result_marker)
+                staged.push_back(e.path().lexically_relative(_staging));
+            auto in_the_way = [&](const fs::path& rel, bool folder)
             {
-              const auto st = fs::symlink_status(_final / name);
-              if (fs::exists(st) && !fs::is_regular_file(st))
-                throw InputError(refusal_reason(_final, _rules).value_or(fmt::format(
-                    "refusing to write '{}': it is not a regular file", (_final / name).string())));
+              const auto st = fs::symlink_status(_final / rel);
+              return fs::exists(st) && !(folder ? fs::is_directory(st) : fs::is_regular_file(st));
+            };
+            for (const auto& rel : staged) // all checked before anything moves
+              for (fs::path p = rel; !p.empty(); p = p.parent_path())
+                if (in_the_way(p, p != rel))
+                  throw InputError(refusal_reason(_final, _rules).value_or(fmt::format(
+                      "refusing to write '{}': it is {}", (_final / p).string(),
+                      entry_kind(_final / p))));
+            for (const auto& rel : staged) // rename replaces the entry, never follows a link
+            {
+              fs::create_directories((_final / rel).parent_path());
+              fs::rename(_staging / rel, _final / rel);
             }
-            for (const auto& name : staged) // rename replaces the entry, never follows a link
-              fs::rename(_staging / name, _final / name);
             write_marker(_final, "complete");
           });
   MPI_Barrier(_comm);

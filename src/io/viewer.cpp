@@ -78,6 +78,27 @@ void render_pictures(const std::filesystem::path& result_dir, const PictureOptio
   check_code(code, "rendering the pictures of " + result_dir.string());
 }
 
+bool is_surgery_result(const std::filesystem::path& dir)
+{
+  namespace fs = std::filesystem;
+  auto real_dir = [](const fs::path& p) { return fs::is_directory(fs::symlink_status(p)); };
+  return real_dir(dir / "preop") && real_dir(dir / "postop");
+}
+
+void render_surgery_pictures(const std::filesystem::path& dir, const PictureOptions& o,
+                             MPI_Comm comm)
+{
+  const std::filesystem::path to = o.out.empty() ? dir : o.out;
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0 && to != dir)
+    for (const char* stage : {"preop", "postop"})
+      std::filesystem::create_directory(to / stage);
+  render_pictures(dir / "preop", {"", o.size, to / "preop"}, comm);
+  render_pictures(dir / "postop", {dir / "preop", o.size, to / "postop"}, comm);
+  write_view_page(dir / "postop", dir / "preop", comm, to / "postop" / "index.html");
+}
+
 void run_viewer_script(const std::string& name, const std::vector<std::string>& args,
                        const std::string& what, MPI_Comm comm)
 {

@@ -36,6 +36,14 @@ void check_picture_tools(MPI_Comm comm);
 void render_pictures(const std::filesystem::path& result_dir, const PictureOptions& o,
                      MPI_Comm comm);
 
+/// True if `dir` is a surgery result: preop/ and postop/ folders of postures.
+bool is_surgery_result(const std::filesystem::path& dir);
+/// Collective. The pictures of a surgery result `dir`: each stage's postures,
+/// post-op against pre-op, and the 3D page postop/index.html, written into
+/// `o.out` (default `dir`) in the same layout (`o.compare` is not used).
+void render_surgery_pictures(const std::filesystem::path& dir, const PictureOptions& o,
+                             MPI_Comm comm);
+
 /// Collective. Run the viewer script `name` (in viewer_dir()) with `args`
 /// under viewer_python() on rank 0; throws naming `what` if it fails.
 void run_viewer_script(const std::string& name, const std::vector<std::string>& args,

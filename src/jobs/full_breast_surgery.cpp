@@ -124,9 +124,12 @@ FullBreastSurgeryResult full_breast_surgery(const Config& c, const OutputTarget&
                                             const Progress& progress)
 {
   FullBreastSurgeryResult r;
-  const double postures = static_cast<double>(requested_postures(c).size()), stages = 2 * postures + 3;
+  // Stages: meshing, pre-op postures, sutures, post-op postures (and the pictures).
+  const double postures = static_cast<double>(requested_postures(c).size()),
+               stages = 2 * postures + 2 + (OutputOptions::from(c).pictures_on() ? 1 : 0);
   const CaseOptions case_options = CaseOptions::from(c);
-  check_picture_tools(comm);
+  if (OutputOptions::from(c).pictures_on())
+    check_picture_tools(comm);
   progress.report("meshing", 0);
   FullBreastBodies bodies = mesh_full_breast_surgery(c, comm, r); // refuses bad incisions first
   OutputDir dir(out, comm);

@@ -157,12 +157,15 @@ std::vector<PostureResult> solve_postures(Model& model, const ObservableProbe& p
 SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm comm, const Progress& progress)
 {
   SimulationResult res;
-  // Stages: meshing, the N postures, the pictures: share 1 / (N + 2) each.
-  const double stages = static_cast<double>(requested_postures(c).size()) + 2;
+  // Stages: meshing, the N postures (and the pictures): share 1 / (N + 1 (+ 1)) each.
+  const bool pictures = OutputOptions::from(c).pictures_on();
+  const double postures = static_cast<double>(requested_postures(c).size());
+  const double stages = postures + 1 + (pictures ? 1 : 0);
   progress.report("meshing", 0);
   const CaseOptions case_options = CaseOptions::from(c);
   check_tissue_formulation(c); // e.g. a mixed case needs P2: refused before the mesh
-  check_picture_tools(comm); // fail before the solves, not after
+  if (pictures)
+    check_picture_tools(comm); // fail before the solves, not after
   auto mesh = [&]
   {
     Stopwatch meshing("simulate: mesh");
@@ -201,7 +204,7 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
 
   OutputDir dir(out, comm);
   res.postures = solve_postures(model, probe, c, dir.path(), coarse.get(),
-                                progress.part(1 / stages, (stages - 1) / stages));
+                                progress.part(1 / stages, (1 + postures) / stages));
 
   nlohmann::json j;
   j["case"] = case_options.name;
@@ -222,8 +225,11 @@ SimulationResult simulate(const Config& c, const OutputTarget& out, MPI_Comm com
   j["newton_records"] = newton_records_json(res.postures);
   write_json(dir.path() / "summary.json", j, comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
-  progress.report("pictures", (stages - 1) / stages);
-  render_pictures(dir.path(), {}, comm);
+  if (pictures)
+  {
+    progress.report("pictures", (stages - 1) / stages);
+    render_pictures(dir.path(), {}, comm);
+  }
   dir.commit();
   progress.report("finished", 1);
   return res;

@@ -250,12 +250,15 @@ void incise_and_suture(Model& post, const Config& c, const std::filesystem::path
 SurgeryResult surgery(const Config& c, const OutputTarget& out, MPI_Comm comm, const Progress& progress)
 {
   SurgeryResult r;
-  const double postures = static_cast<double>(requested_postures(c).size()), stages = 2 * postures + 3;
+  // Stages: meshing, pre-op postures, sutures, post-op postures (and the pictures).
+  const double postures = static_cast<double>(requested_postures(c).size()),
+               stages = 2 * postures + 2 + (OutputOptions::from(c).pictures_on() ? 1 : 0);
   const CaseOptions case_options = CaseOptions::from(c);
   case_options.geometry.require_parametric_cap("surgery (the incision cuts the cap)");
   // The incision first: it rejects bad parameters before any meshing.
   r.incision = meshes::incision_geometry(case_options.geometry, IncisionSpec::from(c));
-  check_picture_tools(comm);
+  if (OutputOptions::from(c).pictures_on())
+    check_picture_tools(comm);
   progress.report("meshing", 0);
   SurgeryMeshes bodies = mesh_surgery(c, comm, r);
   OutputDir dir(out, comm);
@@ -311,10 +314,11 @@ void finish_surgery(Model& post, const Config& c, OutputDir& dir, SurgeryResult&
   write_json(dir.path() / "summary.json", summary(), comm);
   write_text(dir.path() / "case.resolved.toml", c.to_toml(), comm);
   // Pictures: each stage's postures, post-op against pre-op, and the 3D page.
-  progress.report("pictures", (stages - 1) / stages);
-  render_pictures(dir.path() / "preop", {}, comm);
-  render_pictures(dir.path() / "postop", {dir.path() / "preop"}, comm);
-  write_view_page(dir.path() / "postop", dir.path() / "preop", comm);
+  if (OutputOptions::from(c).pictures_on())
+  {
+    progress.report("pictures", (stages - 1) / stages);
+    render_surgery_pictures(dir.path(), {}, comm);
+  }
   dir.commit();
   progress.report("finished", 1);
 }

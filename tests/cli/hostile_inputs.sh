@@ -242,11 +242,12 @@ refuse json_directory "is a folder, not a regular file" calibrate "$W/cases" --o
 refuse json_missing "does not exist" calibrate "$W/missing.json" --out cal
 
 # ---------------------------------------------------------------- command line
-refuse cli_unknown_subcommand "unknown subcommand 'simulat'" simulat "$CASE"
+refuse cli_unknown_subcommand "unknown subcommand 'simulat': did you mean 'simulate'?" simulat "$CASE"
 refuse cli_unknown_option "--bogus" simulate "$CASE" --bogus
 refuse cli_missing_case "case is required" simulate
 refuse cli_no_subcommand "A subcommand is required"
-refuse cli_bad_levels "--levels" converge "$CASE" --levels 9
+refuse cli_bad_levels "breastsim: input error: --levels" converge "$CASE" --levels 9
+refuse cli_misspelt_key "unknown key 'tisue.mu': did you mean 'tissue.mu'?" simulate "$CASE" --set tisue.mu=500
 
 # ---------------------------------------------------------------- links and markers
 # Nothing is written through a symbolic link: a picture replaced by a link,

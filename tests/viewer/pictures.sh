@@ -9,8 +9,11 @@ CHECK="/usr/bin/python3 $HERE/png_check.py"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 passed=0
 
-# 1. simulate writes the default-size pictures next to summary.json.
-"$BIN" -q simulate "$CASES/default.toml" --out "$work/pre"
+# 1. simulate with output.pictures = full writes the default-size pictures
+#    next to summary.json; by default (none) it writes no picture at all.
+"$BIN" -q simulate "$CASES/default.toml" --set postures.names=standing --out "$work/plain"
+! ls "$work/plain" | grep -q '\.png$\|index.html'
+"$BIN" -q simulate "$CASES/default.toml" --set output.pictures=full --out "$work/pre"
 for p in standing supine all_fours; do
   test -s "$work/pre/surface_$p.json"
   $CHECK size "$work/pre/view_$p.png" 800 600
@@ -43,12 +46,23 @@ passed=$((passed + 1))
 
 # 4. no python3/matplotlib: clear message, no output folder.
 set +e
-BREASTSIM_PYTHON=/nonexistent/python3 "$BIN" -q simulate "$CASES/default.toml" --out "$work/none" \
+BREASTSIM_PYTHON=/nonexistent/python3 "$BIN" -q simulate "$CASES/default.toml" --set output.pictures=full --out "$work/none" \
   2> "$work/err"; code=$?
 set -e
 [ "$code" -ne 0 ] || { echo "simulate without python3 succeeded"; exit 1; }
 grep -q "python3-matplotlib" "$work/err" || { cat "$work/err"; exit 1; }
 test ! -e "$work/none"
+passed=$((passed + 1))
+
+# 5. a surgery result: `view` draws pre-op, post-op against pre-op and the page in postop/.
+"$BIN" -q surgery "$CASES/default.toml" --set geometry.mesh_size=0.012 --set postures.names=standing \
+  --out "$work/surgery"
+! find "$work/surgery" -name '*.png' | grep -q .
+"$BIN" -q view "$work/surgery" --size 400x300 > "$work/view_surgery.out"
+grep -q "file://.*/surgery/postop/index.html" "$work/view_surgery.out"
+$CHECK size "$work/surgery/preop/view_standing.png" 400 300
+$CHECK size "$work/surgery/postop/compare_standing.png" 400 300
+test -s "$work/surgery/postop/index.html"
 passed=$((passed + 1))
 
 echo "$passed passed, 0 failed"
