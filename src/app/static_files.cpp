@@ -1,4 +1,5 @@
 #include "static_files.hpp"
+#include "assets.hpp"
 #include <array>
 #include <cstdlib>
 #include <vector>
@@ -8,12 +9,6 @@ namespace breastsim::app
 namespace fs = std::filesystem;
 namespace
 {
-fs::path folder(const char* variable, const char* built_in)
-{
-  const char* v = std::getenv(variable);
-  return v && *v ? fs::path(v) : fs::path(built_in);
-}
-
 struct Entry
 {
   const char* url;
@@ -43,8 +38,8 @@ std::optional<StaticFile> static_file(const std::string& url_path)
   for (const auto& e : table)
     if (url_path == e.url)
     {
-      const fs::path dir = e.three ? folder("BREASTSIM_THREE_DIR", BREASTSIM_THREE_DIR)
-                                   : folder("BREASTSIM_APP_WEB_DIR", BREASTSIM_APP_WEB_DIR);
+      const fs::path dir = e.three ? asset_dir("viewer", "BREASTSIM_VIEWER_DIR") / "web/node_modules/three"
+                                   : asset_dir("app", "BREASTSIM_APP_WEB_DIR");
       return StaticFile{dir / e.file, e.mime};
     }
   return std::nullopt;

@@ -129,6 +129,46 @@ int run_command(const std::vector<breastsim::cli::Command>& commands)
   return code;
 }
 
+/// Parse the command line: -1 to go on, else the exit code (0 after --help,
+/// 2 for an unknown subcommand or any other command-line error).
+int parse_command_line(int argc, char** argv, CLI::App& app,
+                       const std::vector<breastsim::cli::Command>& commands)
+{
+  using namespace breastsim;
+  if (const std::string sub = unknown_subcommand(argc, argv, app); !sub.empty())
+  {
+    std::string names;
+    std::vector<std::string> all;
+    for (const auto& c : commands)
+    {
+      names += (names.empty() ? "" : ", ") + c.app->get_name();
+      all.push_back(c.app->get_name());
+    }
+    const std::string guess = closest_match(sub, all);
+    std::cerr << "breastsim: unknown subcommand '" << shorten(sub) << "'"
+              << (guess.empty() ? "" : ": did you mean '" + guess + "'?") << " (one of: " << names
+              << ")\n";
+    return 2;
+  }
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    if (e.get_exit_code() == 0)
+      return app.exit(e); // --help
+    // Every command-line error is bad input, said as breastsim says it.
+    std::cerr << "breastsim: input error: " << bounded(e.what()) << " (see `breastsim "
+              << (app.get_subcommands().empty() ? std::string("--help")
+                                                : app.get_subcommands().front()->get_name() + " --help")
+              << "`)\n";
+    return 2;
+  }
+
+  return -1;
+}
+
 /// A checked PETSc call outside any command (initialise, finalise): false,
 /// with the error printed, if it fails.
 bool petsc_ok(const std::function<void()>& checked_call)
@@ -175,37 +215,8 @@ int main(int argc, char** argv)
       cli::add_scan_calibrate_command(app),
   };
 
-  if (const std::string sub = unknown_subcommand(argc, argv, app); !sub.empty())
-  {
-    std::string names;
-    std::vector<std::string> all;
-    for (const auto& c : commands)
-    {
-      names += (names.empty() ? "" : ", ") + c.app->get_name();
-      all.push_back(c.app->get_name());
-    }
-    const std::string guess = closest_match(sub, all);
-    std::cerr << "breastsim: unknown subcommand '" << shorten(sub) << "'"
-              << (guess.empty() ? "" : ": did you mean '" + guess + "'?") << " (one of: " << names
-              << ")\n";
-    return 2;
-  }
-  try
-  {
-    app.parse(argc, argv);
-  }
-  catch (const CLI::ParseError& e)
-  {
-    if (e.get_exit_code() == 0)
-      return app.exit(e); // --help
-    // Every command-line error is bad input, said as breastsim says it.
-    std::cerr << "breastsim: input error: " << bounded(e.what()) << " (see `breastsim "
-              << (app.get_subcommands().empty() ? std::string("--help")
-                                                : app.get_subcommands().front()->get_name() + " --help")
-              << "`)\n";
-    return 2;
-  }
-
+  if (const int code = parse_command_line(argc, argv, app, commands); code >= 0)
+    return code;
   if (const std::string problem = environment_problem(); !problem.empty())
   {
     std::cerr << "breastsim: error: " << problem << "\n";

@@ -1,4 +1,5 @@
 #include "viewer.hpp"
+#include "assets.hpp"
 #include "errors.hpp"
 #include "interrupt.hpp"
 #include "log.hpp"
@@ -33,14 +34,7 @@ void check_code(int code, const std::string& what)
 }
 } // namespace
 
-std::filesystem::path viewer_dir()
-{
-  if (const char* d = std::getenv("BREASTSIM_VIEWER_DIR"))
-    return d;
-  // The source tree's src/viewer (absolute path set by CMake; __FILE__ may be
-  // relative, e.g. under ccache's base_dir).
-  return BREASTSIM_VIEWER_SOURCE_DIR;
-}
+std::filesystem::path viewer_dir() { return asset_dir("viewer", "BREASTSIM_VIEWER_DIR"); }
 
 std::string viewer_python()
 {
