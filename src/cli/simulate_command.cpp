@@ -45,15 +45,4 @@ Command add_simulate_command(CLI::App& root)
             return 0;
           }};
 }
-
-Command add_keys_command(CLI::App& root)
-{
-  auto* app = root.add_subcommand("keys", "print every case-file key (Markdown table)");
-  return {app, []()
-          {
-            if (log::is_root())
-              std::cout << schema_markdown();
-            return 0;
-          }};
-}
 } // namespace breastsim::cli

@@ -1,4 +1,5 @@
 #include "surgery.hpp"
+#include "dense_table.hpp"
 #include "case_options.hpp"
 #include "model_setup.hpp"
 #include "neutral_mesh.hpp"
@@ -52,17 +53,6 @@ double max_suture_gap(const Model& m)
   return global;
 }
 
-namespace
-{
-/// Row-major table for Expression::eval.
-struct Table
-{
-  std::vector<double> data;
-  std::size_t cols;
-  double& operator()(std::size_t i, std::size_t j) { return data[i * cols + j]; }
-};
-} // namespace
-
 FoldSite fold_site(Model& model)
 {
   const TaggedDolfinxMesh& tm = model.mesh();
@@ -73,7 +63,7 @@ FoldSite fold_site(Model& model)
   std::vector<std::int32_t> cells(nc);
   std::iota(cells.begin(), cells.end(), 0);
   const std::size_t np = expr.X().second[0];
-  Table det{std::vector<double>(nc * np), np};
+  DenseTable det{std::vector<double>(nc * np), np};
   expr.eval(std::span<const std::int32_t>(cells), det);
   int rank;
   MPI_Comm comm = tm.mesh->comm();

@@ -1,4 +1,5 @@
 #include "model.hpp"
+#include "dense_table.hpp"
 #include "ghosted_assembly.hpp"
 #include "breastsim_registry.hpp"
 #include "breastsim_mixed_registry.hpp"
@@ -20,17 +21,6 @@
 namespace breastsim
 {
 using namespace dolfinx;
-
-namespace
-{
-/// Row-major 2D view used by Expression::eval.
-struct Table
-{
-  std::vector<double> data;
-  std::size_t cols;
-  double& operator()(std::size_t i, std::size_t j) { return data[i * cols + j]; }
-};
-} // namespace
 
 Model::Model(TaggedDolfinxMesh mesh, Constraints constraints, TissueFormulation formulation)
     : _mesh(std::move(mesh)), _constraints(constraints)
@@ -301,7 +291,7 @@ double Model::min_detF()
   std::vector<std::int32_t> cells(ncells);
   std::iota(cells.begin(), cells.end(), 0);
   const std::size_t npts = expr.X().second[0];
-  Table values{std::vector<double>(ncells * npts), npts};
+  DenseTable values{std::vector<double>(ncells * npts), npts};
   expr.eval(std::span<const std::int32_t>(cells), values);
   double local = values.data.empty() ? std::numeric_limits<double>::infinity()
                                      : *std::min_element(values.data.begin(), values.data.end());
