@@ -19,6 +19,7 @@
 
 using namespace breastsim;
 using namespace breastsim::calibration;
+using namespace breastsim::diagnosis;
 
 TEST(SurfaceDistance, ClosestPointOnTriangleRegions)
 {

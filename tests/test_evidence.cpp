@@ -1,4 +1,4 @@
-// The evidence rules of the diagnosis (calibrate/diagnose/evidence.hpp) on
+// The evidence rules of the diagnosis (diagnose/evidence.hpp) on
 // hand-made fits whose answers are known in closed form.
 #include "evidence.hpp"
 #include "model_form.hpp"
@@ -8,7 +8,7 @@
 #include <tuple>
 #include <gtest/gtest.h>
 
-using namespace breastsim::calibration;
+using namespace breastsim::diagnosis;
 
 namespace
 {

@@ -24,18 +24,18 @@ namespace
 /// (rule_names.hpp); the help shows the names and the default.
 template <class E>
 void add_rule_option(CLI::App* app, const std::string& flag, E& target,
-                     const calibration::NameTable<E>& table, const std::string& help)
+                     const diagnosis::NameTable<E>& table, const std::string& help)
 {
-  const auto names = calibration::names_of(table);
+  const auto names = diagnosis::names_of(table);
   app->add_option_function<std::string>(
-         flag, [&target, &table](const std::string& v) { target = calibration::value_of(table, v); }, help)
+         flag, [&target, &table](const std::string& v) { target = diagnosis::value_of(table, v); }, help)
       ->check(CLI::IsMember(names))
       ->option_text(fmt::format("{} (default: {})", fmt::join(names, "|"),
-                                calibration::name_of(table, target)));
+                                diagnosis::name_of(table, target)));
 }
 
 /// The diagnosis mesh and its check mesh (docs/DIAGNOSE.md, steps 1-2).
-void add_mesh_options(CLI::App* app, calibration::DiagnoseOptions& d)
+void add_mesh_options(CLI::App* app, diagnosis::DiagnoseOptions& d)
 {
   d.order = 2;
   d.mesh_size = 0.012;
@@ -49,7 +49,7 @@ void add_mesh_options(CLI::App* app, calibration::DiagnoseOptions& d)
                   "numerical noise floor: the fitted model is also solved on a mesh this many "
                   "times finer (<= 1: off)")
       ->capture_default_str();
-  add_rule_option(app, "--noise-floor", d.noise_floor, calibration::noise_floor_names(),
+  add_rule_option(app, "--noise-floor", d.noise_floor, diagnosis::noise_floor_names(),
                   "how the numerical noise floor is spread: posture (one per posture, its RMS "
                   "change) or local (per point, over its neighbourhood)");
 }
@@ -62,7 +62,7 @@ Command add_diagnose_command(CLI::App& root)
     std::string recording, case_file, candidates;
     OutputOption out;
     std::vector<std::string> sets;
-    calibration::DiagnoseOptions d;
+    diagnosis::DiagnoseOptions d;
   };
   auto o = std::make_shared<Options>();
   auto* app = root.add_subcommand("diagnose", "find the physics a model leaves out: where the "
@@ -76,9 +76,9 @@ Command add_diagnose_command(CLI::App& root)
   add_output_option(app, o->out, "output folder (default results/diagnosis); replaced on success");
   app->add_option("--fit", o->d.fit, "current-model parameters refitted (" + calibration::fit_alias_names()
                                          + ")")->capture_default_str();
-  const std::string left_out = calibration::candidates_not_default();
+  const std::string left_out = diagnosis::candidates_not_default();
   app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library ("
-                                                     + calibration::candidate_names()
+                                                     + diagnosis::candidate_names()
                                                      + "; default: every candidate whose term is off"
                                                      + (left_out.empty() ? std::string() : ", but " + left_out)
                                                      + ")");
@@ -93,7 +93,7 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
                                                    "this fraction of the noise (RMS, see "
                                                    "--effect-measure), also at its interval's end (0: off)")->capture_default_str();
-  add_rule_option(app, "--effect-measure", o->d.effect_measure, calibration::effect_measure_names(),
+  add_rule_option(app, "--effect-measure", o->d.effect_measure, diagnosis::effect_measure_names(),
                   "the effect --min-effect judges: all (RMS over all points) or largest-posture "
                   "(RMS in the posture the term changes most)");
   app->add_option("--min-misfit-share", o->d.min_misfit_share,
@@ -112,7 +112,7 @@ Command add_diagnose_command(CLI::App& root)
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();
   add_rule_option(app, "--refinement-allowance", o->d.refinement_allowance,
-                  calibration::refinement_allowance_names(),
+                  diagnosis::refinement_allowance_names(),
                   "the mesh allowance in the refinement check's critical values: full (the "
                   "diagnosis mesh's, on the finer mesh and in the continuum) or scaled (A / r^(2p) "
                   "on the finer mesh, none in the continuum)");
@@ -131,7 +131,7 @@ Command add_diagnose_command(CLI::App& root)
             CaseGroups::check(MPI_COMM_WORLD, o->d.ranks_per_case, "--ranks-per-case");
             check_picture_tools(MPI_COMM_WORLD); // fail before the solves, not after
             const auto out = claim_output(o->out, "results/diagnosis", {o->recording, o->case_file});
-            std::cout << calibration::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);
+            std::cout << diagnosis::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);
             return 0;
           }};
 }
