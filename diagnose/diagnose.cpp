@@ -22,7 +22,6 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
-#include <tuple>
 
 namespace breastsim::diagnosis
 {
@@ -192,8 +191,7 @@ Evidence cheap_evidence(Search& s, const Candidate& cand, const std::vector<Free
   e.misfit_before = s.state.chi2 - s.state.dof;
   e.terms_before = s.found;
   effect_size(s.state, after, e);
-  e.effect_at_null_edge_mm =
-      effect_at_interval_edge(after, cand.parameter, judged_effect_mm(e, s.o.effect_measure));
+  e.effect_at_null_edge_mm = effect_at_interval_edge(after, cand.parameter, e.effect_rms_mm_all);
   const auto without = held_out_chi2(s.state, s.rec), with = held_out_chi2(after, s.rec);
   for (std::size_t k = 0; k < without.size() && k < with.size(); ++k)
     e.held_out_gain.push_back(without[k] - with[k]);
@@ -239,8 +237,7 @@ std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vect
                           ? s.chi2_on_finer_postures(s.state) - s.chi2_on_finer_postures(rd.after)
                           : e.lr;
   e.lr_continuum = continuum_lr(lr_h, e.lr_fine, s.o.mesh_ratio, s.o.refinement_order);
-  std::tie(e.critical_fine, e.critical_continuum) =
-      refinement_criticals(rd.critical, e.critical - rd.critical, s.o);
+  e.critical_fine = e.critical_continuum = refinement_critical(rd.critical, e.critical - rd.critical);
   log::info("candidate '{}': LR {:.1f} on the finer mesh, {:.1f} in the continuum", e.candidate,
             e.lr_fine, e.lr_continuum);
   judge(e, s.o, s.rec.noise_sigma);
@@ -441,9 +438,6 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   d.noise_sigma = rec.noise_sigma;
   d.mesh_error.assign(rec.postures.size(), 0.0);
   d.sigma_eff.assign(rec.postures.size(), rec.noise_sigma);
-  d.noise_floor = o.noise_floor;
-  d.effect_measure = o.effect_measure;
-  d.refinement_allowance = o.refinement_allowance;
   Search s(rec, current, o, comm);
   fit_current_model(s, d);
   // Step 8: rounds until nothing (more) is significant or o.max_rounds

@@ -18,27 +18,6 @@ using calibration::LsqOptions;
 using calibration::Matrix;
 using calibration::Uncertainty;
 
-/// How the numerical noise floor is spread over a posture's points.
-enum class NoiseFloor
-{
-  posture, ///< one e_h per posture: the RMS change of its distances
-  local    ///< per point: the RMS change over its neighbourhood
-};
-
-/// Which effect of a term the practical-significance rule judges.
-enum class EffectMeasure
-{
-  all,            ///< the RMS change over all points of all postures
-  largest_posture ///< the RMS change in the posture the term changes most
-};
-
-/// The mesh allowance in the refinement check's critical values.
-enum class RefinementAllowance
-{
-  full,  ///< the diagnosis mesh's allowance A on the finer mesh and in the continuum
-  scaled ///< A / r^(2p) on the mesh r times finer, none in the continuum
-};
-
 struct DiagnoseOptions
 {
   std::string fit = "mu";              ///< current-model parameters refitted (--fit names)
@@ -57,29 +36,24 @@ struct DiagnoseOptions
   double region_z = 4.0;               ///< |neighbourhood z| that marks a point as systematic
   /// Numerical noise floor: the fitted current model is also solved on a
   /// mesh `mesh_ratio` times finer; the mean square change of the distances
-  /// (per posture) and of the landmarks, e_h^2, is added to the noise,
+  /// and of the landmarks, e_h^2, is added to the noise,
   ///   sigma_eff^2 = sigma^2 + e_h^2,
   /// so that the discretisation error of the diagnosis mesh is not mistaken
-  /// for missing physics. mesh_ratio <= 1: off (sigma_eff = sigma).
+  /// for missing physics. mesh_ratio <= 1: off (sigma_eff = sigma). A
+  /// point's e_h,i is the RMS change over itself and its `neighbours`
+  /// nearest points, so that the few points where the diagnosis mesh is poor
+  /// (a crease at the inframammary fold: up to 0.7 mm against a posture RMS
+  /// of 0.05 mm, on an independent-truth control) are not averaged away.
   double mesh_ratio = 1.5;
-  /// posture: e_h is the posture's RMS change. local: e_h,i of point i is
-  /// the RMS change over itself and its `neighbours` nearest points, so that
-  /// the few points where the diagnosis mesh is poor (a crease at the
-  /// inframammary fold: up to 0.7 mm against a posture RMS of 0.05 mm, on an
-  /// independent-truth control) are not averaged away.
-  NoiseFloor noise_floor = NoiseFloor::local;
   /// Practical significance: an accepted term must change the model surface
-  /// by at least this fraction of the noise sigma (RMS, as effect_measure
-  /// says), also at the end of its 95 % interval nearest the null (0: off).
+  /// by at least this fraction of the noise sigma (RMS over all points), also
+  /// at the end of its 95 % interval nearest the null (0: off).
   double min_effect = 0.1;
-  EffectMeasure effect_measure = EffectMeasure::all;
-  /// Refinement check: an accepted term's LR must stay above the critical
-  /// value on the mesh `mesh_ratio` times finer and extrapolated to the
-  /// continuum (evidence.hpp, continuum_lr) with this order (0: off).
+  /// Refinement check: an accepted term's LR must stay above its critical
+  /// value with the mesh allowance on the mesh `mesh_ratio` times finer and
+  /// extrapolated to the continuum (evidence.hpp, continuum_lr) with this
+  /// order (0: off).
   double refinement_order = 1.5;
-  /// The allowance the check's critical values carry (evidence.hpp
-  /// refinement_criticals).
-  RefinementAllowance refinement_allowance = RefinementAllowance::full;
   /// Held-out postures: an accepted term must improve the linearised
   /// prediction of the postures it was not fitted on (sum of chi2 gains > 0).
   bool held_out_check = true;
@@ -134,7 +108,7 @@ struct Evidence
   int terms_before = 0;                        ///< terms found before this one
   bool refinement_checked = false;
   double lr_fine = 0, lr_continuum = 0;        ///< refinement check (refinement_checked)
-  double critical_fine = 0, critical_continuum = 0; ///< their critical values (refinement_criticals)
+  double critical_fine = 0, critical_continuum = 0; ///< their critical values (refinement_critical)
   std::vector<std::string> failed;             ///< reasons for rejection (empty: holds every rule checked)
   bool accepted = false;                       ///< the round's accepted candidate
 };
@@ -233,10 +207,7 @@ struct Diagnosis
   double noise_sigma = 0;
   std::vector<double> mesh_error;     ///< e_h per posture (distances) [m]
   std::vector<double> sigma_eff;      ///< sqrt(sigma^2 + e_h^2) per posture [m]
-  std::vector<double> local_floor_max; ///< largest e_h,i per posture [m] (empty unless NoiseFloor::local)
-  NoiseFloor noise_floor = NoiseFloor::local;
-  EffectMeasure effect_measure = EffectMeasure::all;
-  RefinementAllowance refinement_allowance = RefinementAllowance::full;
+  std::vector<double> local_floor_max; ///< largest e_h,i per posture [m] (empty without a noise floor)
   /// Postures the fitted current model cannot be solved in on the finer
   /// mesh: their e_h is the largest of the others', the refinement checks
   /// leave them out, and the final values are the diagnosis mesh's unless

@@ -2,7 +2,6 @@
 #include "diagnosis_report.hpp"
 #include "evidence.hpp"
 #include "candidates.hpp"
-#include "rule_names.hpp"
 #include "separation.hpp"
 #include <algorithm>
 #include <cmath>
@@ -257,7 +256,7 @@ namespace
 /// ", per point up to ..." of a local noise floor.
 std::string local_floor_text(const Diagnosis& d, std::size_t p, double sigma)
 {
-  if (d.noise_floor != NoiseFloor::local || p >= d.local_floor_max.size())
+  if (p >= d.local_floor_max.size())
     return "";
   const double e = d.local_floor_max[p];
   return fmt::format(" (RMS); per point up to {:.3f} mm -> {:.3f} mm", 1e3 * e,
@@ -273,7 +272,7 @@ nlohmann::json noise_floor_json(const Diagnosis& d, const Recording& rec)
     nlohmann::json f = {{"posture", rec.postures[p].name},
                         {"mesh_error_mm", 1e3 * d.mesh_error[p]},
                         {"sigma_eff_mm", 1e3 * d.sigma_eff[p]},
-                        {"local_mesh_error_max_mm", nullptr}}; // null: the floor is not local
+                        {"local_mesh_error_max_mm", nullptr}}; // null: no noise floor
     if (p < d.local_floor_max.size())
       f["local_mesh_error_max_mm"] = 1e3 * d.local_floor_max[p];
     a.push_back(f);
@@ -287,9 +286,6 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   j["format"] = "breastsim-diagnosis/1";
   j["noise_sigma_mm"] = 1e3 * d.noise_sigma;
   j["noise_floor"] = noise_floor_json(d, rec);
-  j["noise_floor_spread"] = name_of(noise_floor_names(), d.noise_floor);
-  j["effect_measure"] = name_of(effect_measure_names(), d.effect_measure);
-  j["refinement_allowance"] = name_of(refinement_allowance_names(), d.refinement_allowance);
   j["unsolved_on_finer_mesh"] = d.unsolved_on_finer;
   j["lost_on_finer_mesh"] = d.lost_on_finer;
   j["rejoined_on_finer_mesh"] = d.rejoined_on_finer;

@@ -84,23 +84,11 @@ std::optional<std::string> held_out_refusal(const Evidence& e, const DiagnoseOpt
   return std::nullopt;
 }
 
-std::pair<double, double> refinement_criticals(double statistical, double allowance,
-                                               const DiagnoseOptions& o)
-{
-  if (o.refinement_allowance == RefinementAllowance::full)
-    return {statistical + allowance, statistical + allowance};
-  // A / r^(2p) on the finer mesh, 0 in the continuum
-  return {statistical + allowance / std::pow(o.mesh_ratio, 2 * o.refinement_order), statistical};
-}
+double refinement_critical(double statistical, double allowance) { return statistical + allowance; }
 
 bool survives_refinement(const Evidence& e)
 {
   return e.lr_fine > e.critical_fine && e.lr_continuum > e.critical_continuum;
-}
-
-double judged_effect_mm(const Evidence& e, EffectMeasure measure)
-{
-  return measure == EffectMeasure::largest_posture ? e.effect_rms_mm_largest : e.effect_rms_mm_all;
 }
 
 void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
@@ -109,13 +97,10 @@ void judge(Evidence& e, const DiagnoseOptions& o, double noise_sigma)
   if (!(e.lr > e.critical))
     e.failed.push_back(fmt::format("its LR {:.1f} is below the critical value {:.1f}", e.lr, e.critical));
   const double min_mm = 1e3 * o.min_effect * noise_sigma;
-  const double effect = judged_effect_mm(e, o.effect_measure);
+  const double effect = e.effect_rms_mm_all;
   if (o.min_effect > 0 && effect < min_mm)
-    e.failed.push_back(fmt::format("its effect, RMS {:.3f} mm{}, is below {:g} x the noise ({:.3f} mm)",
-                                   effect,
-                                   o.effect_measure == EffectMeasure::largest_posture
-                                       ? " in the posture it changes most" : "",
-                                   o.min_effect, min_mm));
+    e.failed.push_back(fmt::format("its effect, RMS {:.3f} mm, is below {:g} x the noise ({:.3f} mm)",
+                                   effect, o.min_effect, min_mm));
   else if (o.min_effect > 0 && e.effect_at_null_edge_mm < min_mm)
     e.failed.push_back(fmt::format("its 95 % interval reaches the null: at the interval's end the "
                                    "effect is {:.3f} mm, below {:.3f} mm",

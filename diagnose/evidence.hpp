@@ -6,19 +6,15 @@
 #include "diagnosis.hpp"
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace breastsim::diagnosis
 {
 /// The effect of a term in mm: the change of the model surface (normal
 /// distances at the recorded points) between the fit without and with it.
-/// Per posture RMS and max, and RMS over all points.
+/// Per posture RMS and max, and RMS over all points (the one the
+/// practical-significance rule judges).
 void effect_size(const FitState& without, const FitState& with, Evidence& e);
-
-/// The effect the practical-significance rule judges: the RMS over all
-/// points or in the posture the term changes most.
-double judged_effect_mm(const Evidence& e, EffectMeasure measure);
 /// The refinement check's rule: LR_f and LR_0 both above their critical values.
 bool survives_refinement(const Evidence& e);
 
@@ -40,14 +36,10 @@ std::vector<double> held_out_chi2(const FitState& s, const Recording& rec);
 ///   sqrt(LR_0) = sqrt(LR_f) + (sqrt(LR_f) - sqrt(LR_h)) / (r^p - 1).
 double continuum_lr(double lr_h, double lr_fine, double ratio, double order);
 
-/// The refinement check's critical values {on the mesh `o.mesh_ratio` = r
-/// times finer, in the continuum}, from the statistical critical value c and
-/// the diagnosis mesh's allowance A (the LR its error could give):
-///   full:   {c + A, c + A};
-///   scaled: {c + A / r^(2p), c}, p = o.refinement_order (the error is of
-///           order h^p, an LR of order h^2p; none is left in the continuum).
-std::pair<double, double> refinement_criticals(double statistical, double allowance,
-                                               const DiagnoseOptions& o);
+/// The refinement check's critical value, on the finer mesh and in the
+/// continuum alike: the statistical critical value c plus the diagnosis
+/// mesh's allowance A (the LR its error could give), c + A.
+double refinement_critical(double statistical, double allowance);
 
 /// The held-out rule (DiagnoseOptions::held_out_check): why it refuses `e`
 /// (its summed held-out chi2 gain is not positive, or no more than half of

@@ -66,12 +66,12 @@ bool fill_unsolved(std::vector<double>& floor, const std::vector<bool>& solved)
 namespace
 {
 /// sigma_eff of each point of posture p: from its own e_h,i (local floor of
-/// a solved posture) or from the posture's e_h.
+/// a solved posture) or, unsolved on the finer mesh, from the posture's e_h.
 void append_point_sigmas(std::vector<double>& sigma, const Recording& rec, std::size_t p,
                          const std::vector<double>& change, const DiagnoseOptions& o, Diagnosis& d)
 {
   const auto& pts = rec.postures[p].points;
-  if (o.noise_floor != NoiseFloor::local || change.empty())
+  if (change.empty())
   {
     sigma.insert(sigma.end(), pts.size(), d.sigma_eff[p]);
     return;
@@ -117,8 +117,7 @@ std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, con
                 "leave it out", rec.postures[p].name);
     }
   std::vector<double> sigma;
-  if (o.noise_floor == NoiseFloor::local)
-    d.local_floor_max = d.mesh_error; // an unsolved posture's points keep the posture's floor
+  d.local_floor_max = d.mesh_error; // an unsolved posture's points keep the posture's floor
   for (std::size_t p = 0; p < np; ++p)
   {
     d.sigma_eff[p] = std::hypot(rec.noise_sigma, d.mesh_error[p]);

@@ -22,9 +22,9 @@ std::vector<double> local_floor(const std::vector<Point>& pts, const std::vector
 
 /// Numerical noise floor of the diagnosis mesh at the fitted state, from the
 /// change of the distances (and of each landmark) on a mesh `o.mesh_ratio`
-/// times finer: e_h per posture (RMS change; d.mesh_error, d.sigma_eff) or,
-/// with NoiseFloor::local, per point (local_floor; d.local_floor_max);
-/// sigma_eff^2 = sigma^2 + e_h^2 per residual (returned). A posture the finer
+/// times finer: e_h per posture (RMS change; d.mesh_error, d.sigma_eff) and
+/// per point (local_floor; d.local_floor_max); sigma_eff^2 = sigma^2 + e_h^2
+/// per residual (returned), each point with its own e_h,i. A posture the finer
 /// mesh cannot solve takes the largest posture e_h of the others and is
 /// excluded from fine_ev (d.unsolved_on_finer); throws SolveError if none solves.
 std::vector<double> noise_floor(PointEvaluator& ev, PointEvaluator& fine_ev, const Recording& rec,

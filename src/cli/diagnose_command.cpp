@@ -8,11 +8,8 @@
 #include "fit_parameters.hpp"
 #include "overrides.hpp"
 #include "recording.hpp"
-#include "rule_names.hpp"
 #include "strings.hpp"
 #include "viewer.hpp"
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <iostream>
 #include <memory>
 
@@ -20,20 +17,6 @@ namespace breastsim::cli
 {
 namespace
 {
-/// An option that picks one rule choice by its name in `table`
-/// (rule_names.hpp); the help shows the names and the default.
-template <class E>
-void add_rule_option(CLI::App* app, const std::string& flag, E& target,
-                     const diagnosis::NameTable<E>& table, const std::string& help)
-{
-  const auto names = diagnosis::names_of(table);
-  app->add_option_function<std::string>(
-         flag, [&target, &table](const std::string& v) { target = diagnosis::value_of(table, v); }, help)
-      ->check(CLI::IsMember(names))
-      ->option_text(fmt::format("{} (default: {})", fmt::join(names, "|"),
-                                diagnosis::name_of(table, target)));
-}
-
 /// The diagnosis mesh and its check mesh (docs/DIAGNOSE.md, steps 1-2).
 void add_mesh_options(CLI::App* app, diagnosis::DiagnoseOptions& d)
 {
@@ -49,9 +32,6 @@ void add_mesh_options(CLI::App* app, diagnosis::DiagnoseOptions& d)
                   "numerical noise floor: the fitted model is also solved on a mesh this many "
                   "times finer (<= 1: off)")
       ->capture_default_str();
-  add_rule_option(app, "--noise-floor", d.noise_floor, diagnosis::noise_floor_names(),
-                  "how the numerical noise floor is spread: posture (one per posture, its RMS "
-                  "change) or local (per point, over its neighbourhood)");
 }
 } // namespace
 
@@ -91,11 +71,8 @@ Command add_diagnose_command(CLI::App& root)
                   "critical value with the mesh allowance (0: refit every one)")->capture_default_str();
   add_mesh_options(app, o->d);
   app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
-                                                   "this fraction of the noise (RMS, see "
-                                                   "--effect-measure), also at its interval's end (0: off)")->capture_default_str();
-  add_rule_option(app, "--effect-measure", o->d.effect_measure, diagnosis::effect_measure_names(),
-                  "the effect --min-effect judges: all (RMS over all points) or largest-posture "
-                  "(RMS in the posture the term changes most)");
+                                                   "this fraction of the noise (RMS over all "
+                                                   "points), also at its interval's end (0: off)")->capture_default_str();
   app->add_option("--min-misfit-share", o->d.min_misfit_share,
                   "an accepted term must explain this fraction of the misfit (chi2 - dof) of the "
                   "model before it (0: off)")->capture_default_str();
@@ -111,11 +88,6 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--refinement-order", o->d.refinement_order,
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();
-  add_rule_option(app, "--refinement-allowance", o->d.refinement_allowance,
-                  diagnosis::refinement_allowance_names(),
-                  "the mesh allowance in the refinement check's critical values: full (the "
-                  "diagnosis mesh's, on the finer mesh and in the continuum) or scaled (A / r^(2p) "
-                  "on the finer mesh, none in the continuum)");
   app->add_flag("!--no-held-out", o->d.held_out_check,
                 "do not require a gain in the prediction of held-out postures");
   app->add_option("--ranks-per-case", o->d.ranks_per_case,
