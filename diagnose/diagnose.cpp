@@ -22,31 +22,23 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
+#include <optional>
+#include <utility>
 
 namespace breastsim::diagnosis
 {
 namespace
 {
-/// A posture was newly left out of the finer mesh (Search::on_finer): the
-/// step that solved there restarts over the others. Not an std::exception,
-/// so that nothing catching solver errors takes it.
-struct FinerPostureLost
-{
-};
-
-/// `step()`, restarted while a posture is newly left out of the finer mesh
-/// (at most once per posture: on_finer throws SolveError when none is left).
+/// The value of `step()`, a std::optional that is empty when a posture was
+/// newly left out of the finer mesh (Search::on_finer): the step is then
+/// made again over the other postures (at most once per posture: on_finer
+/// throws SolveError when none is left).
 template <typename Step>
 auto retry_without_lost(Step&& step)
 {
   for (;;)
-    try
-    {
-      return step();
-    }
-    catch (const FinerPostureLost&)
-    {
-    }
+    if (auto value = step())
+      return std::move(*value);
 }
 
 /// One diagnosis in progress: the model found so far and its fit.
@@ -83,15 +75,15 @@ struct Search
   /// model fails in there (Diagnosis::lost_on_finer).
   std::vector<std::string> lost_on_finer;
 
-  /// Case `c` on the finer mesh. A posture failing there for the first time
-  /// is left out of every later solve on it: the current model's fit there
-  /// (which holds it) is dropped and FinerPostureLost thrown, so that the
-  /// step restarts over the other postures (retry_without_lost).
-  PointEvaluation on_finer(const Config& c)
+  /// Case `c` on the finer mesh, or none: a posture failing there for the
+  /// first time is left out of every later solve on it, the current model's
+  /// fit there (which holds it) is dropped, and the step that asked starts
+  /// again over the other postures (retry_without_lost).
+  std::optional<PointEvaluation> on_finer(const Config& c)
   {
     PointEvaluation e;
     if (note_lost(fine_ev->leave_out_failures(c, e)))
-      throw FinerPostureLost{};
+      return std::nullopt;
     return e;
   }
   /// Record postures newly left out of the finer mesh and drop the current
@@ -222,12 +214,20 @@ std::unique_ptr<FitState> check_refinement(Search& s, Round& rd, const std::vect
   Evidence& e = evidence_of(rd, rd.tested);
   const Config fine_base = finer(s.current, s.o.mesh_ratio);
   const Evaluate on_fine = [&](const Config& c) { return s.on_finer(c); };
-  auto with = retry_without_lost([&] {
+  auto with = retry_without_lost([&]() -> std::optional<std::unique_ptr<FitState>> {
     if (!s.fine_state)
-      s.fine_state = std::make_unique<FitState>(gauss_newton_refit(
-          on_fine, fine_base, s.frees, s.state, "refinement check: current model on the finer mesh"));
-    return std::make_unique<FitState>(gauss_newton_refit(
-        on_fine, fine_base, trial, rd.after, "refinement check: with " + e.candidate));
+    {
+      auto current = gauss_newton_refit(on_fine, fine_base, s.frees, s.state,
+                                        "refinement check: current model on the finer mesh");
+      if (!current)
+        return std::nullopt;
+      s.fine_state = std::make_unique<FitState>(std::move(*current));
+    }
+    auto refit = gauss_newton_refit(on_fine, fine_base, trial, rd.after,
+                                    "refinement check: with " + e.candidate);
+    if (!refit)
+      return std::nullopt;
+    return std::make_unique<FitState>(std::move(*refit));
   });
   const FitState& without = *s.fine_state;
   e.refinement_checked = true;

@@ -125,14 +125,18 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
   return make_state(c, frees, r.y, r.J, e, r.evaluations + 1);
 }
 
-FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::vector<Free>& frees,
-                            const FitState& from, const std::string& label)
+std::optional<FitState> gauss_newton_refit(const Evaluate& ev, const Config& base,
+                                           const std::vector<Free>& frees, const FitState& from,
+                                           const std::string& label)
 {
   constexpr int max_steps = 3;       // chord steps with from's Jacobian
   constexpr double step_tol = 0.02;  // stop when max |delta ln p| falls below this
   std::vector<double> y = log_values(from);
   const Config c0 = config_at(base, frees, y);
-  FitState best = make_state(c0, frees, y, from.J, ev(c0), 1);
+  const auto e0 = ev(c0);
+  if (!e0)
+    return std::nullopt;
+  FitState best = make_state(c0, frees, y, from.J, *e0, 1);
   const double chi2_start = best.chi2;
   const std::size_t n = y.size();
   for (int k = 0; k < max_steps && n > 0 && from.J.size() == best.r.size(); ++k)
@@ -150,7 +154,10 @@ FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::v
     if (k > 0 && largest < step_tol)
       break; // the first step is always tried: it measures how far the optimum moved
     const Config c = config_at(base, frees, y);
-    FitState next = make_state(c, frees, y, from.J, ev(c), best.evaluations + 1);
+    const auto e = ev(c);
+    if (!e)
+      return std::nullopt;
+    FitState next = make_state(c, frees, y, from.J, *e, best.evaluations + 1);
     if (!(next.chi2 < best.chi2))
       break;
     best = std::move(next);

@@ -8,6 +8,7 @@
 #include "diagnosis.hpp"
 #include "point_evaluator.hpp"
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,10 +42,12 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
 ///   y <- y - (J^T J)^-1 J^T r(y),
 /// clamped to the bounds, each kept only if it lowers chi2, at most 3, the
 /// first always tried, then until max |step| < 0.02; 2-4 evaluations instead of a Levenberg-Marquardt fit.
-/// Its chi2 is evaluated, not predicted.
-using Evaluate = std::function<PointEvaluation(const Config&)>;
-FitState gauss_newton_refit(const Evaluate& ev, const Config& base, const std::vector<Free>& frees,
-                            const FitState& from, const std::string& label);
+/// Its chi2 is evaluated, not predicted. An evaluation that gives none
+/// abandons the refit: std::nullopt (the caller starts it again).
+using Evaluate = std::function<std::optional<PointEvaluation>(const Config&)>;
+std::optional<FitState> gauss_newton_refit(const Evaluate& ev, const Config& base,
+                                           const std::vector<Free>& frees, const FitState& from,
+                                           const std::string& label);
 /// ln of the fitted values of `s`.
 std::vector<double> log_values(const FitState& s);
 /// The step y + delta within the frees' bounds: y_p + delta_p clamped to
