@@ -19,6 +19,7 @@
 
 using namespace breastsim;
 using namespace breastsim::calibration;
+using namespace breastsim::diagnosis;
 
 TEST(SurfaceDistance, ClosestPointOnTriangleRegions)
 {
@@ -521,7 +522,7 @@ TEST(Diagnose, GaussNewtonRefitFromANearbyFit)
     ++evaluations;
     return linear_residuals(c);
   };
-  const FitState s = gauss_newton_refit(ev, base, frees, from, "test");
+  const FitState s = gauss_newton_refit(ev, base, frees, from, "test").value();
   EXPECT_EQ(evaluations, 2);
   EXPECT_NEAR(s.values[0], 450.0, 1e-9);
   EXPECT_NEAR(s.values[1], 9000.0, 1e-8);
@@ -529,7 +530,24 @@ TEST(Diagnose, GaussNewtonRefitFromANearbyFit)
   for (auto& row : from.J)
     for (double& x : row)
       x = -x;
-  const FitState kept = gauss_newton_refit(ev, base, frees, from, "test");
+  const FitState kept = gauss_newton_refit(ev, base, frees, from, "test").value();
   EXPECT_NEAR(kept.values[0], 400.0, 1e-9);
   EXPECT_GT(kept.chi2, 3.0);
+  // An evaluation that gives none (a posture newly left out of the finer
+  // mesh) abandons the refit there, at the start or at the step.
+  for (auto& row : from.J)
+    for (double& x : row)
+      x = -x; // the exact Jacobian again
+  for (const int none_at : {1, 2})
+  {
+    int calls = 0;
+    const Evaluate losing = [&](const Config& c) -> std::optional<PointEvaluation>
+    {
+      if (++calls == none_at)
+        return std::nullopt;
+      return linear_residuals(c);
+    };
+    EXPECT_FALSE(gauss_newton_refit(losing, base, frees, from, "test").has_value()) << none_at;
+    EXPECT_EQ(calls, none_at);
+  }
 }

@@ -1,14 +1,12 @@
-// The evidence rules of the diagnosis (calibrate/diagnose/evidence.hpp) on
+// The evidence rules of the diagnosis (diagnose/evidence.hpp) on
 // hand-made fits whose answers are known in closed form.
 #include "evidence.hpp"
 #include "model_form.hpp"
-#include "rule_names.hpp"
 #include "separation.hpp"
 #include <cmath>
-#include <tuple>
 #include <gtest/gtest.h>
 
-using namespace breastsim::calibration;
+using namespace breastsim::diagnosis;
 
 namespace
 {
@@ -114,7 +112,7 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   EXPECT_NE(e.failed[0].find("interval reaches the null"), std::string::npos) << e.failed[0];
   EXPECT_NE(e.failed[1].find("held-out postures"), std::string::npos) << e.failed[1];
   e.refinement_checked = true;
-  std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 177.9, o);
+  e.critical_fine = e.critical_continuum = refinement_critical(12.1, 177.9);
   EXPECT_EQ(e.critical_fine, e.critical);
   EXPECT_EQ(e.critical_continuum, e.critical);
   e.lr_fine = 250;
@@ -146,11 +144,10 @@ TEST(Evidence, JudgeNamesEachFailedRule)
   EXPECT_TRUE(e.failed.empty());
 }
 
-// The scaled allowance (--refinement-allowance scaled): the diagnosis mesh's
-// allowance A = 138.1 is about r^(2p) = 1.5^3 smaller on the finer mesh and
-// gone in the continuum (eff_base_springs_weak_2's bed: LR 175.0 on the
-// finer mesh, 101.3 in the continuum; refused with the full allowance).
-TEST(Evidence, RefinementAllowanceFullOrScaled)
+// The refinement check carries the diagnosis mesh's full allowance A = 138.1
+// on the finer mesh and in the continuum: eff_base_springs_weak_2's bed (LR
+// 175.0 on the finer mesh, 101.3 in the continuum) is refused.
+TEST(Evidence, RefinementCheckCarriesTheFullAllowance)
 {
   DiagnoseOptions o;
   Evidence e;
@@ -161,7 +158,7 @@ TEST(Evidence, RefinementAllowanceFullOrScaled)
   e.refinement_checked = true;
   e.lr_fine = 175.0;
   e.lr_continuum = 101.3;
-  std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 138.1, o);
+  e.critical_fine = e.critical_continuum = refinement_critical(12.1, 138.1);
   judge(e, o, 0.5e-3);
   ASSERT_EQ(e.failed.size(), 1u);
   EXPECT_NE(e.failed[0].find("does not survive refinement: 175.0 on the finer mesh against 150.2"),
@@ -171,26 +168,19 @@ TEST(Evidence, RefinementAllowanceFullOrScaled)
   EXPECT_EQ(to_json(e)["physics"], "base_springs"); // a candidate's own physics
   e.candidate = "suspensory_cables";
   EXPECT_EQ(to_json(e)["physics"], "suspensory_ligament"); // another form of it
-  e.candidate = "base_springs";
-  o.refinement_allowance = RefinementAllowance::scaled;
-  std::tie(e.critical_fine, e.critical_continuum) = refinement_criticals(12.1, 138.1, o);
-  EXPECT_NEAR(e.critical_fine, 12.1 + 138.1 / std::pow(1.5, 3.0), 1e-12);
-  EXPECT_EQ(e.critical_continuum, 12.1);
+  e.lr_fine = 175.0 + 138.1; // above 150.2 on both
+  e.lr_continuum = 150.3;
   judge(e, o, 0.5e-3);
   EXPECT_TRUE(e.failed.empty()) << e.failed[0];
   EXPECT_EQ(to_json(e)["refinement_passed"], true);
-  e.lr_continuum = 12.0; // the continuum still needs the statistical critical value
-  judge(e, o, 0.5e-3);
-  EXPECT_EQ(e.failed.size(), 1u);
-  EXPECT_EQ(name_of(refinement_allowance_names(), o.refinement_allowance), "scaled");
 }
 
 // The effect is judged over all points: a gland that changes its four
 // postures by 0.0784, 0.0375, 0.042 and 0.0668 mm RMS (val_gland_core_weak,
 // interval end at 0.823 q_hat) has an RMS over all points of 0.0587 mm and
-// its interval end at 0.048, below 0.1 sigma = 0.05 mm. The posture it
-// changes most is judged only with --effect-measure largest-posture.
-TEST(Evidence, EffectIsJudgedOverAllPointsByDefault)
+// its interval end at 0.048, below 0.1 sigma = 0.05 mm; the posture it
+// changes most (0.0784 mm, reported) is not what is judged.
+TEST(Evidence, EffectIsJudgedOverAllPoints)
 {
   DiagnoseOptions o;
   o.min_misfit_share = 0;
@@ -213,20 +203,6 @@ TEST(Evidence, EffectIsJudgedOverAllPointsByDefault)
   judge(e, o, 0.5e-3);
   ASSERT_EQ(e.failed.size(), 1u);
   EXPECT_NE(e.failed[0].find("interval reaches the null"), std::string::npos) << e.failed[0];
-  // Judged in the posture it changes most (--effect-measure largest-posture),
-  // its interval end is 0.823 x 0.0784 = 0.0645 mm: it holds.
-  DiagnoseOptions largest = o;
-  largest.effect_measure = EffectMeasure::largest_posture;
-  EXPECT_NEAR(judged_effect_mm(e, largest.effect_measure), 0.0784, 1e-12);
-  Evidence e_largest = e;
-  e_largest.effect_at_null_edge_mm = effect_at_interval_edge(with, "q", judged_effect_mm(e, largest.effect_measure));
-  judge(e_largest, largest, 0.5e-3);
-  EXPECT_TRUE(e_largest.failed.empty()) << e_largest.failed[0];
-  // Below 0.05 mm in every posture it fails either way, and says which measure.
-  e_largest.effect_rms_mm_largest = 0.04;
-  judge(e_largest, largest, 0.5e-3);
-  ASSERT_EQ(e_largest.failed.size(), 1u);
-  EXPECT_NE(e_largest.failed[0].find("in the posture it changes most"), std::string::npos) << e_largest.failed[0];
   // An effect of 0.0784 mm in every posture holds.
   with.distances = {{7.84e-5, -7.84e-5}, {7.84e-5, -7.84e-5}, {7.84e-5, -7.84e-5}, {7.84e-5, -7.84e-5}};
   effect_size(without, with, e);
@@ -322,24 +298,4 @@ TEST(Separation, AnotherFormOfTheSamePhysicsStillNamesIt)
   set_aside_inseparable(d);
   EXPECT_TRUE(d.discovered.empty());
   ASSERT_EQ(d.undecided.size(), 1u);
-}
-
-// One name table per rule choice: every value has one name, and the name
-// gives the value back (the command line and diagnosis.json share them).
-TEST(RuleNames, EveryValueHasOneNameAndBack)
-{
-  const auto round_trip = [](const auto& table)
-  {
-    for (const auto& [name, value] : table)
-    {
-      EXPECT_EQ(name_of(table, value), name);
-      EXPECT_TRUE(value_of(table, name) == value) << name;
-    }
-    EXPECT_THROW(value_of(table, "neither"), std::invalid_argument);
-  };
-  round_trip(noise_floor_names());
-  round_trip(effect_measure_names());
-  round_trip(refinement_allowance_names());
-  EXPECT_EQ(names_of(effect_measure_names()), (std::vector<std::string>{"all", "largest-posture"}));
-  EXPECT_EQ(name_of(noise_floor_names(), NoiseFloor::local), "local");
 }

@@ -1,10 +1,10 @@
-// The model-form uncertainty of the found values (calibrate/diagnose/
-// model_form.hpp) on hand-made fits whose answers are known in closed form.
+// The model-form uncertainty of the found values (diagnose/model_form.hpp)
+// on hand-made fits whose answers are known in closed form.
 #include "model_form.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 
-using namespace breastsim::calibration;
+using namespace breastsim::diagnosis;
 
 namespace
 {

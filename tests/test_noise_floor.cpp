@@ -1,5 +1,5 @@
-// The numerical noise floor spread over the points (--noise-floor local) and
-// the regions it whitens.
+// The numerical noise floor spread over the points (each point's own, over
+// its neighbourhood) and the regions it whitens.
 #include "fixtures.hpp"
 #include "diagnosis_report.hpp"
 #include "mesh_error.hpp"
@@ -11,6 +11,7 @@
 
 using namespace breastsim;
 using namespace breastsim::calibration;
+using namespace breastsim::diagnosis;
 
 namespace
 {
@@ -54,7 +55,7 @@ TEST(NoiseFloor, LocalFloorKeepsAConcentratedMeshError)
   double ss = 0;
   for (double c : change)
     ss += c * c;
-  const double posture_rms = std::sqrt(ss / change.size()); // what NoiseFloor::posture uses
+  const double posture_rms = std::sqrt(ss / change.size()); // the posture's e_h
   EXPECT_LT(posture_rms, 0.2 * e[21]);
 }
 
@@ -97,7 +98,7 @@ TEST(NoiseFloor, RegionsAreFoundInTheWhitenedResiduals)
   EXPECT_TRUE(locate_regions(rec, f, 12, 4.0).empty());
 }
 
-TEST(NoiseFloor, JsonGivesTheLargestPointFloorOnlyWhenLocal)
+TEST(NoiseFloor, JsonGivesTheLargestPointFloor)
 {
   Recording rec;
   rec.noise_sigma = 5e-4;
@@ -107,7 +108,7 @@ TEST(NoiseFloor, JsonGivesTheLargestPointFloorOnlyWhenLocal)
   d.noise_sigma = rec.noise_sigma;
   d.mesh_error = {5e-5};
   d.sigma_eff = {std::hypot(5e-4, 5e-5)};
-  auto j = noise_floor_json(d, rec); // posture: local_floor_max stays empty
+  auto j = noise_floor_json(d, rec); // no local floor measured: null
   EXPECT_TRUE(j[0]["local_mesh_error_max_mm"].is_null());
   EXPECT_NEAR(j[0]["mesh_error_mm"].get<double>(), 0.05, 1e-12);
   d.local_floor_max = {7e-4};

@@ -21,6 +21,7 @@
 
 using namespace breastsim;
 using namespace breastsim::calibration;
+using namespace breastsim::diagnosis;
 
 namespace
 {

@@ -57,13 +57,13 @@ void calibrate(const fs::path& folder, const nlohmann::json& request, const Conf
   }
   const auto r = calibrate_request(request, data);
   calibration::check_calibrate_request(r, c);
-  auto job = calibration::prepare_calibration(c, r);
+  auto job = diagnosis::prepare_calibration(c, r);
   // The progress channel: each evaluation's history entry, as it is made.
   job.on_evaluation = [&folder](const nlohmann::json& h)
   { append_evaluation(folder, evaluations_from_history(nlohmann::json::array({h})).at(0)); };
   rules.inputs.push_back(data);
   const auto target = OutputTarget::claim((folder / "result").string(), rules, MPI_COMM_WORLD);
-  calibration::run_calibration(job, target, folder / "checkpoint.json", MPI_COMM_WORLD);
+  diagnosis::run_calibration(job, target, folder / "checkpoint.json", MPI_COMM_WORLD);
   // The report's history (the same entries) is the final list.
   std::ifstream report(folder / "result" / "report.json");
   const auto rep = nlohmann::json::parse(report, nullptr, false);

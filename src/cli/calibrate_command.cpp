@@ -65,7 +65,7 @@ Command add_calibrate_command(CLI::App& root)
             calibration::check_calibrate_request(o->r, c);
             check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
             // Every input is read and checked before the output folder is claimed.
-            const auto job = calibration::prepare_calibration(c, o->r);
+            const auto job = diagnosis::prepare_calibration(c, o->r);
             const std::string default_out = "results/" + CaseOptions::from(c).name + "_calibrated";
             const std::vector<std::string> inputs = {o->r.data_file, o->case_file};
             std::filesystem::path checkpoint;
@@ -76,7 +76,7 @@ Command add_calibrate_command(CLI::App& root)
                                           : o->checkpoint,
                                       inputs, "the checkpoint");
             const auto out = claim_output(o->out, default_out, inputs);
-            std::cout << calibration::run_calibration(job, out, checkpoint, MPI_COMM_WORLD);
+            std::cout << diagnosis::run_calibration(job, out, checkpoint, MPI_COMM_WORLD);
             return 0;
           }};
 }

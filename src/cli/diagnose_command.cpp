@@ -8,11 +8,8 @@
 #include "fit_parameters.hpp"
 #include "overrides.hpp"
 #include "recording.hpp"
-#include "rule_names.hpp"
 #include "strings.hpp"
 #include "viewer.hpp"
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <iostream>
 #include <memory>
 
@@ -20,22 +17,8 @@ namespace breastsim::cli
 {
 namespace
 {
-/// An option that picks one rule choice by its name in `table`
-/// (rule_names.hpp); the help shows the names and the default.
-template <class E>
-void add_rule_option(CLI::App* app, const std::string& flag, E& target,
-                     const calibration::NameTable<E>& table, const std::string& help)
-{
-  const auto names = calibration::names_of(table);
-  app->add_option_function<std::string>(
-         flag, [&target, &table](const std::string& v) { target = calibration::value_of(table, v); }, help)
-      ->check(CLI::IsMember(names))
-      ->option_text(fmt::format("{} (default: {})", fmt::join(names, "|"),
-                                calibration::name_of(table, target)));
-}
-
 /// The diagnosis mesh and its check mesh (docs/DIAGNOSE.md, steps 1-2).
-void add_mesh_options(CLI::App* app, calibration::DiagnoseOptions& d)
+void add_mesh_options(CLI::App* app, diagnosis::DiagnoseOptions& d)
 {
   d.order = 2;
   d.mesh_size = 0.012;
@@ -49,9 +32,6 @@ void add_mesh_options(CLI::App* app, calibration::DiagnoseOptions& d)
                   "numerical noise floor: the fitted model is also solved on a mesh this many "
                   "times finer (<= 1: off)")
       ->capture_default_str();
-  add_rule_option(app, "--noise-floor", d.noise_floor, calibration::noise_floor_names(),
-                  "how the numerical noise floor is spread: posture (one per posture, its RMS "
-                  "change) or local (per point, over its neighbourhood)");
 }
 } // namespace
 
@@ -62,7 +42,7 @@ Command add_diagnose_command(CLI::App& root)
     std::string recording, case_file, candidates;
     OutputOption out;
     std::vector<std::string> sets;
-    calibration::DiagnoseOptions d;
+    diagnosis::DiagnoseOptions d;
   };
   auto o = std::make_shared<Options>();
   auto* app = root.add_subcommand("diagnose", "find the physics a model leaves out: where the "
@@ -76,9 +56,9 @@ Command add_diagnose_command(CLI::App& root)
   add_output_option(app, o->out, "output folder (default results/diagnosis); replaced on success");
   app->add_option("--fit", o->d.fit, "current-model parameters refitted (" + calibration::fit_alias_names()
                                          + ")")->capture_default_str();
-  const std::string left_out = calibration::candidates_not_default();
+  const std::string left_out = diagnosis::candidates_not_default();
   app->add_option("--candidates", o->candidates, "comma-separated subset of the candidate library ("
-                                                     + calibration::candidate_names()
+                                                     + diagnosis::candidate_names()
                                                      + "; default: every candidate whose term is off"
                                                      + (left_out.empty() ? std::string() : ", but " + left_out)
                                                      + ")");
@@ -91,11 +71,8 @@ Command add_diagnose_command(CLI::App& root)
                   "critical value with the mesh allowance (0: refit every one)")->capture_default_str();
   add_mesh_options(app, o->d);
   app->add_option("--min-effect", o->d.min_effect, "an accepted term must change the surface by "
-                                                   "this fraction of the noise (RMS, see "
-                                                   "--effect-measure), also at its interval's end (0: off)")->capture_default_str();
-  add_rule_option(app, "--effect-measure", o->d.effect_measure, calibration::effect_measure_names(),
-                  "the effect --min-effect judges: all (RMS over all points) or largest-posture "
-                  "(RMS in the posture the term changes most)");
+                                                   "this fraction of the noise (RMS over all "
+                                                   "points), also at its interval's end (0: off)")->capture_default_str();
   app->add_option("--min-misfit-share", o->d.min_misfit_share,
                   "an accepted term must explain this fraction of the misfit (chi2 - dof) of the "
                   "model before it (0: off)")->capture_default_str();
@@ -111,11 +88,6 @@ Command add_diagnose_command(CLI::App& root)
   app->add_option("--refinement-order", o->d.refinement_order,
                   "an accepted term's LR must pass on the finer mesh and extrapolated to the "
                   "continuum with this order (0: off)")->capture_default_str();
-  add_rule_option(app, "--refinement-allowance", o->d.refinement_allowance,
-                  calibration::refinement_allowance_names(),
-                  "the mesh allowance in the refinement check's critical values: full (the "
-                  "diagnosis mesh's, on the finer mesh and in the continuum) or scaled (A / r^(2p) "
-                  "on the finer mesh, none in the continuum)");
   app->add_flag("!--no-held-out", o->d.held_out_check,
                 "do not require a gain in the prediction of held-out postures");
   app->add_option("--ranks-per-case", o->d.ranks_per_case,
@@ -131,7 +103,7 @@ Command add_diagnose_command(CLI::App& root)
             CaseGroups::check(MPI_COMM_WORLD, o->d.ranks_per_case, "--ranks-per-case");
             check_picture_tools(MPI_COMM_WORLD); // fail before the solves, not after
             const auto out = claim_output(o->out, "results/diagnosis", {o->recording, o->case_file});
-            std::cout << calibration::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);
+            std::cout << diagnosis::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);
             return 0;
           }};
 }

@@ -18,7 +18,7 @@ Command add_record_command(CLI::App& root)
   {
     std::string case_file, out;
     std::vector<std::string> sets;
-    calibration::RecordingOptions r;
+    diagnosis::RecordingOptions r;
   };
   auto o = std::make_shared<Options>();
   auto* app = root.add_subcommand("record", "synthetic 3D surface recording of a case with a hidden "
@@ -27,10 +27,10 @@ Command add_record_command(CLI::App& root)
   app->add_option("--out", o->out, "recording to write (JSON, breastsim-recording/1)")->required();
   app->add_option("--set", o->sets, "override a case key (repeatable)");
   app->add_option("--hidden", o->r.hidden, "candidate physics switched on in the truth ("
-                                               + calibration::candidate_names()
+                                               + diagnosis::candidate_names()
                                                + "); default none (a control)");
   app->add_option("--value", o->r.value, "its parameter ("
-                                             + calibration::candidate_parameters()
+                                             + diagnosis::candidate_parameters()
                                              + "); default: the candidate's typical value");
   app->add_option("--points", o->r.points, "points per posture")->capture_default_str();
   app->add_option("--noise", o->r.noise, "noise sigma per coordinate [m]")->capture_default_str();
@@ -41,7 +41,7 @@ Command add_record_command(CLI::App& root)
           {
             const Config c = load_case(o->case_file, o->sets);
             const auto file = claim_file(o->out, {o->case_file}, "the recording");
-            const auto rec = calibration::synthetic_recording(c, o->r, MPI_COMM_WORLD);
+            const auto rec = diagnosis::synthetic_recording(c, o->r, MPI_COMM_WORLD);
             write_owned_json(file, calibration::to_json(rec), MPI_COMM_WORLD);
             if (log::is_root())
               std::cout << "recording written to " << o->out << " (hidden: "

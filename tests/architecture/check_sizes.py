@@ -10,7 +10,7 @@ import re
 import sys
 
 MAX_FILE, MAX_FUNCTION = 500, 80
-FOLDERS = ("src", "calibrate", "verification")
+FOLDERS = ("src", "calibrate", "diagnose", "verification")
 SIGNATURE = re.compile(r"^[A-Za-z_][\w:<>,\s\*&~\[\]]*\([^;]*$")
 
 
