@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The planning app's two speed targets, measured by the browser
 # test and asserted here: the page's first view < 1 s (median of 5 loads)
 # and a slider move redrawing the planes < 100 ms (median of 9 moves), from

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The default-case surgery from the planning app against the CLI, same run.
 
 Usage: app_surgery.py BREASTSIM CASE PORT WORK REPEATS

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The default-case surgery started from the planning app (the job the page
 # posts) against `breastsim surgery cases/default.toml`, alternating, in the
 # same run: medians of REPEATS and their ratio (target: app <= 1.10 x CLI).

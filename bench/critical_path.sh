@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Wall time of the default case's `simulate` and `surgery` with and without
 # pictures (output.pictures = none, the default, against full, which is what
 # every run did before pictures became a separate step): medians of REPEATS

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Missing-physics diagnosis on concealed data: for every hidden
 # candidate (and the no-effect control) and every seed, a recording is made
 # by `breastsim record` on a finer mesh, then `breastsim diagnose` names what

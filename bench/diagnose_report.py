@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Summary of bench/diagnose_confusion.sh: confusion matrix (hidden -> named),
 false-discovery rate on the controls, recovery of the hidden parameter
 (inside the reported 95 % interval), RMS before/after, time per diagnosis.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The edit loop of a researcher who edits UFL energies (docs/PERFORMANCE.md,
 # "Edit loop"). In a scratch copy of this repository's committed sources
 # (git worktree) with its own build, built once first (not timed):

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Fits over MPI sub-communicators: the wall time of
 #  - `calibrate` (default case, --fit mu,c,lambda --algorithm lbfgs: three
 #    finite-difference Jacobian columns per gradient) and

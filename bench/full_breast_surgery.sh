@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Surgery on the real shape (docs/SCANS.md "Surgery on a full breast"): the
 # five synthetic patients of bench/scan_round_trip.sh (true chest wall given),
 # scan -> scan-model -> neutral-state -> surgery (standing), serially and on

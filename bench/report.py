@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Summarise bench/results.jsonl (medians over repeats) into docs/PERFORMANCE.md."""
 import json
 import statistics

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Benchmarks of one standing posture solve (not tests): wall time and peak
 # memory for meshes of about 5k, 50k and 200k tetrahedra, P1 and P2, direct
 # (MUMPS) and AMG (GMRES + GAMG), serial and 2 MPI ranks. Every configuration

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Calibration with scans (docs/SCANS.md): synthetic patients with tissue.mu =
 # 600 Pa (the default start is 400 Pa) scanned standing, supine and on all
 # fours (3 holes, 0.5 mm noise, truth meshed at 6 mm); scan-calibrate fits

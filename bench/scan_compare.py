@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Round-trip numbers of a scanned breast (docs/SCANS.md), in mm.
 
 Usage: scan_compare.py PATIENT MODEL NEUTRAL FORWARD

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Time of the scan pipeline ("scan to neutral state to three
 # postures takes <= 60 s at default resolution"): a synthetic patient's scan
 # (SHAPE: volume cm3, ptosis, lateral, asymmetry; 0.5 mm noise, 3 holes, the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Round trip of scanned breasts (docs/SCANS.md): five synthetic patients
 # (200 to 1500 cm^3, ptosis, lateral turn, asymmetry; holes, 0.5 mm noise)
 # and a spherical cap's scan go scan -> scan-model -> neutral-state ->

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The paper's Fig. 10 sweep (README, "Surgery and incision sweeps": a = 25,
 # 30, 35 deg x h = 20, 30 mm, standing, the default 8 mm P1 mesh) on 1 rank,
 # on 2 ranks solving each surgery together (--ranks-per-case 0, the default)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The build tree's program finds its assets as an installed one does
 # (src/core/assets.hpp): build/share/breastsim/{viewer,app} link to the sources.
 file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/share/breastsim)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "calibrate_job.hpp"
 #include "calibration_output.hpp"
 #include "diagnose.hpp"

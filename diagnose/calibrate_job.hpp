@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // `breastsim calibrate` as a job: the request with its data, read and checked
 // before any output is claimed; the fit (calibrate.hpp for point

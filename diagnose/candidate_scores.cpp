@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "candidate_scores.hpp"
 #include "errors.hpp"
 #include "fit_state.hpp"

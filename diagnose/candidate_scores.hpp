@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The WHAT step of a diagnosis: the score (Lagrange-multiplier) statistic of
 // a candidate at its null value q = 0 (diagnose.hpp, step 3), and the

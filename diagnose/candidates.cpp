@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "candidates.hpp"
 #include "term_switches.hpp"
 #include "errors.hpp"

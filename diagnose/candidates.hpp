@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The library of physics a diagnosis may find missing: every energy term
 // that declares a CANDIDATE in forms/ (forms/common.py candidate()), read from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The rounds of a diagnosis (diagnose.hpp): fit, noise floor, then per round
 // WHERE (residual_regions.cpp), WHAT (candidate_scores.cpp), MODEL IT (the
 // refits, here) and the acceptance test; at the end the finer-mesh refit of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Missing-physics diagnosis (docs/DIAGNOSE.md). Given a 3D surface
 // recording and the user's current model:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The diagnosis options' ranges (diagnosis.hpp), checked once at the edge.
 #include "candidates.hpp"
 #include "diagnosis.hpp"

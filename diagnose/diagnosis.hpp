@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The data of a missing-physics diagnosis (diagnose.hpp): its options, the
 // fits, regions, candidate scores and rounds, and the result.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "diagnosis_case.hpp"
 #include "fit_parameters.hpp"
 #include <cstdint>

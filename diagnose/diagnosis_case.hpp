@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The case a diagnosis fits (diagnose.hpp): the user's case with the
 // recording's a-priori values on the diagnosis discretisation, and back.

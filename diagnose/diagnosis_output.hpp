@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Files of a diagnosis (written into a staging result folder):
 //   diagnosis.json, diagnosis.txt    the report (JSON, plain words)

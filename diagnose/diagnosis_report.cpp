@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The diagnosis as JSON and as plain words (diagnosis_report.hpp).
 #include "diagnosis_report.hpp"
 #include "evidence.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The report of a diagnosis: the verdict and the plain-words text (also
 // printed), and diagnosis.json (breastsim-diagnosis/1, docs/DIAGNOSE.md).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "evidence.hpp"
 #include "candidates.hpp"
 #include "linearised_refit.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The evidence for and against adding a refitted candidate (diagnose.hpp):
 // beyond the likelihood ratio, its effect on the surface in mm, how far its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "fit_state.hpp"
 #include "fit_parameters.hpp"
 #include "least_squares.hpp"

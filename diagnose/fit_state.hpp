@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // One fit of a diagnosis: the free parameters (the --fit parameters of the
 // current model, plus a candidate's q when it is refitted), bounded

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Refits linearised about a fit (FitState's J and r): the Gauss-Newton step
 // fitted without a group of residual rows, and the chi2 it predicts for them.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mesh_error.hpp"
 #include "geometry_options.hpp"
 #include "errors.hpp"

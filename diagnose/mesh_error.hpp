@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The diagnosis mesh's own discretisation error, measured against a mesh
 // `ratio` times finer: the numerical noise floor (sigma_eff), and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "model_form.hpp"
 #include "linearised_refit.hpp"
 #include "uncertainty.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Model-form uncertainty of the found values, estimated from the data by
 // delete-a-group jackknives of linearised refits (linearised_refit.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "point_evaluator.hpp"
 #include "surface_distance.hpp"
 #include "surface_export.hpp"

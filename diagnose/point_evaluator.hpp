@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The forward map of a diagnosis: a case -> the normal distances of the
 // recorded points to the simulated deformed skin (surface_distance.hpp) and

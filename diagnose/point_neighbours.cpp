@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "point_neighbours.hpp"
 #include <algorithm>
 #include <cmath>

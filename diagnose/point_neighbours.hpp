@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Neighbourhoods of a posture's recorded points: the k nearest points of
 // each, and the neighbourhood RMS of a per-point quantity.

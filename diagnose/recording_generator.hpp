@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Synthetic 3D surface recordings for proving the diagnosis: the
 // case's model with one hidden candidate physics switched on (or none), on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "residual_regions.hpp"
 #include "geometry_options.hpp"
 #include "point_neighbours.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The WHERE step of a diagnosis: regions of systematic residual on each
 // posture's recorded points.

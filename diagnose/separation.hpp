@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Candidates the data cannot tell apart. Two refitted candidates A and B
 // that both hold every rule are compared by their margins over their

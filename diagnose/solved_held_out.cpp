@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "solved_held_out.hpp"
 #include "linearised_refit.hpp"
 #include "log.hpp"

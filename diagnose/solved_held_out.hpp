@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The held-out prediction of each posture solved instead of linearised: the
 // model at the parameters fitted without that posture, solved in it. Used

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Chassaignac (retromammary) space: a bed of springs on the base.
 
     E_base = int_base c(p)/2 |u|^2 dA,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Configure-time check of the form compiler stack (prints versions)."""
 import sys
 try:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Chest-wall contact: the skin may not pass behind the chest (the plane
 y = 0, docs/MODEL.md frame). A penalty on the deformed skin's penetration,
 

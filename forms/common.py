@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Shared UFL objects for every breastsim energy term.
 
 The element degree is chosen by the BREASTSIM_DEGREE environment variable

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Build-time driver: run ffcx on one module entry and write a Makefile
 depfile naming every UFL source of this repository the entry loaded
 (forms/*.py, verification/forms/*.py), so that a module is

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Build-time generator: the lookup of the mixed formulation's compiled forms
 (src/forms/breastsim_mixed_registry.hpp).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Build-time generator: writes the C++ tables of the UFL model.
 
 Usage: gen_registry.py OUTDIR DEGREE [DEGREE ...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The forms that belong to no energy term (ffcx module geometry_p<degree>):
 
     volume       = int_B J dV              deformed volume of the model

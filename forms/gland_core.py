@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Glandular core: a stiffer region of tissue around the nipple axis,
 
     E_gland = int_B m_g chi(X) W(F) dV,   chi(X) = 1 where X^2 + Z^2 < r_g^2, else 0,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Glandular lobe: the gland as a stiffer body buried under the fat, centred
 on the nipple axis at height y_l above the chest wall,
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Mass forces: the potential of gravity in the body frame.
 
     E_gravity = - int_B rho * load * g_vec . u dV

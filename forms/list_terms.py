@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Configure-time helper: print the registered energy terms (forms/registry.py),
 separated by ';' (a CMake list). Reads the registry without importing UFL."""
 import ast

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The mixed (u, p) formulation (tissue.formulation = mixed): Taylor-Hood,
 the displacement of common.py's degree (2) and a continuous pressure of
 one degree less.

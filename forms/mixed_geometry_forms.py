@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The term-free forms of the mixed formulation (module mixed_geometry_p<degree>):
 
     pressure_integral = int_B p dV     (mean pressure = this / reference_volume)

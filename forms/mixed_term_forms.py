@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """One energy term on the mixed (u, p) space as its own ffcx module
 (mixed_<name>_p<degree>, forms/mixed_forms_common.py):
     energy_<name>   = E(w)

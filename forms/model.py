@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The registered energy terms of breastsim and their metadata (no forms).
 
     Pi(u) = sum_k on_k E_k(u),  residual = dPi/du [v],  jacobian = d residual/du [du]

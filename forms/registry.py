@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The energy terms composed into the total energy, in order.
 
 To add a physics term: write forms/<name>.py (NAME, PARAMETERS, ENERGY and

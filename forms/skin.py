@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Skin: a 2D neo-Hookean membrane of thickness t_s on the outer surface.
 
 With the reference normal N and P = I - N (x) N (docs/MODEL.md):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Upper-pole skin: the skin's own law (forms/skin.py) with moduli added on
 the upper pole, Z > 0, where the skin is stiffer or thicker than elsewhere:
     E = int_skin [Z > 0] t_s W_s(F; mu_u, lambda_u) dA,

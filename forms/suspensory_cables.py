@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Suspensory (Cooper's) ligaments as tension-only cables: each upper-pole
 skin point is tied to an anchor on the chest wall that lies d_a above it,
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Suspensory (Cooper's) ligaments: the upper pole of the skin is tethered
 toward its neutral position by a bed of springs,
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Sutures (knitting conditions, paper eq. (3)-(4)) as a penalty energy.
 
 suture_abd (the cut face on plane P1) is sewn to the symmetry plane x = 0

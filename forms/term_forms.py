@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """One energy term as its own ffcx module (term_<name>_p<degree>).
 
 The term is forms/<BREASTSIM_TERM>.py. Its forms:

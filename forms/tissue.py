@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Breast tissue: compressible neo-Hookean body (paper eq. 5).
 
     E_tissue = int_B mu/2 (tr(F F^T) - 3 - 2 ln J) + lambda/2 (J - 1)^2 dV

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """General tissue-to-tissue suture (knitting condition, docs/MODEL.md eq. (3)):
 
     f(g(p)) = f(p)   for p on face suture_a, g(p) on face suture_b,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Shared helpers for the tests: small meshes and models of the default case.
 #include "config.hpp"

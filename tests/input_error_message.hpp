@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The message of the InputError a call throws ("" if it throws none): tests
 // compare the messages users see.

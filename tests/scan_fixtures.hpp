@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Scans for the scan tests: a spherical cap's skin (base radius R, height H,
 // base on the plane y = 0, apex at (0, H, 0)) triangulated on a polar

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Independent cross-check (scipy solve_bvp, not part of ctest) of sphere_reference()
 # in verification/sphere_bench.cpp: the pressurised thick sphere of the energy (eq. 5)
 # W = mu/2 (I1 - 3 - 2 ln J) + lam/2 (J - 1)^2, radial r(R), dead inner pressure p0.

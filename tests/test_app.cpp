@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The planning app's pieces that need no server: job ids, the case from
 // JSON overrides, a calibration's progress, the lower-pole volumes of a
 // skin surface, the serve options and the data folder rules.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The calibration job's progress channel (src/app/job_evaluations.hpp): the
 // report's history entries (also what the library streams) as entries, the JSON lines after a cursor, the cursor's checks.
 #include "errors.hpp"

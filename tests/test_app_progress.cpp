@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The structured progress of simulate, surgery and sweep jobs: Progress
 // (the library's callback, parts mapped onto their share of the whole) and
 // the job's progress channel (progress_channel.cpp: progress.jsonl written

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The planning app's small pure functions: base64_decode and html_escape of
 // the report writer, the report's picture checks, and the grid of the small
 // sweep job (sweep_request.cpp) with the CLI's messages for bad values.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The Patient step's files at the server's edge: the scan upload's fields
 // (scan_upload.cpp) with the CLI's messages, the stored file's check naming
 // "the uploaded scan" (never the server's path), and the recording check

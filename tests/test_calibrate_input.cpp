@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Calibration input checking (measurement files, --fit), the uncertainty
 // algebra and the checkpoint: no forward solves.
 #include "checkpoint.hpp"

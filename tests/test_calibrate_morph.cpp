@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Mesh morphing of the neutral cap for the calibration of R and H
 // (src/mesh/cap_morph.hpp, calibrate/forward/forward_model.hpp): the morphed mesh is
 // the new cap (skin on the new sphere, base in y = 0, symmetry face in

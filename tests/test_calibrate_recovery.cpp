@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Calibration end to end on synthetic data without inverse crime: the
 // measurements come from the forward model on a finer mesh (h = 8 mm, or
 // 4 mm in the long test) with Gaussian noise of 0.5 mm; the fits use coarser

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Grid sequencing (src/solver/coarse_start.hpp): when it applies, that the transfer
 // reproduces the coarse field at the fine nodes, and that a posture solved
 // from the coarse solution is the same equilibrium as one solved from rest,

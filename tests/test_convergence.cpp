@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Mesh convergence of the default case's standing nipple displacement under
 // uniform refinement (gmsh splitting, boundary nodes snapped to the sphere):
 // the value settles and the observed order is recorded (printed; see

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Missing-physics diagnosis: the pieces it is made of. The end-to-end proof
 // on concealed data is tests/cli/diagnose.sh.
 #include "breastsim_registry.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Each energy term at a homogeneous deformation equals its closed form.
 #include "half_cap.hpp"
 #include "fixtures.hpp"

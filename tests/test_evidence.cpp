@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The evidence rules of the diagnosis (diagnose/evidence.hpp) on
 // hand-made fits whose answers are known in closed form.
 #include "evidence.hpp"

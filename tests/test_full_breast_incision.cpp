@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The incision on a full breast's own shape (src/scan/full_breast_incision,
 // src/scan/skin_solid): on a hemisphere (r(d) = R, the cap with H = R) the
 // points equal the half cap's incision (src/mesh/incision) and their mirror

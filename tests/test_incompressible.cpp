@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Nearly incompressible tissue (docs/VERIFICATION.md, "Nearly incompressible
 // tissue"): the mixed Taylor-Hood P2-P1 formulation against the displacement
 // formulation, on a manufactured solution at lambda / mu = 1e3

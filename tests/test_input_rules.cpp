@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The rules that guard user input and output at the edge: PETSc options that
 // touch files, duplicate JSON keys, long values in messages, links and
 // malformed markers in result folders, files written without following links.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The stress-free neutral state by inverse elastostatics
 // (src/solver/inverse_neutral_state.hpp): a round trip from a known
 // reference to its loaded shape and back.

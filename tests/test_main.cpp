@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // GoogleTest entry point: PETSc/MPI are initialised once for all tests.
 #include <dolfinx/common/log.h>
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The parametric half cap: tags, areas and volume against closed forms,
 // the nipple vertex, and mesh quality.
 #include "half_cap.hpp"

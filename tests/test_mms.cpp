@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Method of manufactured solutions for the full energy (tissue + plain skin
 // membrane + base springs; verification/forms/mms.py, verification/mms.cpp): the observed L2 and H1
 // error orders under uniform refinement of the half cap must be within 0.1 of

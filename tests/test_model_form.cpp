@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The model-form uncertainty of the found values (diagnose/model_form.hpp)
 // on hand-made fits whose answers are known in closed form.
 #include "model_form.hpp"

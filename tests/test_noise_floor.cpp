@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The numerical noise floor spread over the points (each point's own, over
 // its neighbourhood) and the regions it whitens.
 #include "fixtures.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The option structs (src/case/*_options.hpp, term_switches.hpp): defaults,
 // --set values reaching their fields, and each struct reading exactly the
 // keys it declares.

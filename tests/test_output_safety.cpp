@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The refusal rule of result folders (src/io/output_target.hpp) on a fake file
 // system: a scratch folder stands in for "/", $HOME and the working
 // directory, so the rule for the real root is tested without touching it.

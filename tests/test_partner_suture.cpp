@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The general tissue-to-tissue suture (forms/tissue_suture.py) and the
 // partner fields behind it (src/model/partner_field.hpp): the interpolation matrix
 // P against exactly representable fields, Taylor checks of the chain-rule

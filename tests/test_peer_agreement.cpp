@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Agreement with the peers' FEBio 4.11 / CalculiX 2.20 results
 // (meshes/peers/README.md): the half cap R = 70 mm, H = 60 mm under gravity
 // standing (mu = 2100 Pa, lambda = 0, rho = 970 kg/m^3, g = 9.81 m/s^2),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Checked PETSc calls and owning PETSc handles (src/core/petsc.hpp).
 #include "petsc.hpp"
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Physical consistency of the forward model: zero load, frame rotation,
 // the fixed-base limit of stiff springs, and inverted elements.
 #include "half_cap.hpp"

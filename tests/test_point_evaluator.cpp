@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The forward map of a diagnosis (point_evaluator.hpp): a posture left out
 // adds nothing, a posture that cannot be solved is marked, not thrown, and
 // its noise floor is the largest measured one (mesh_error.hpp); on posture

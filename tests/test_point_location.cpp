@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Point location in meshes of any geometry order (src/mesh/point_location.hpp):
 // the projection onto the reference tetrahedron, the curved-cell pull-back,
 // and locate_points on P1 and curved P2 meshes of the half cap.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The checks that refuse a dirty scan (src/scan/scan_checks.hpp,
 // scan_frame.hpp): a clean cap, and one with noise and small holes, are
 // accepted and fitted; every defect is refused with a message naming what is

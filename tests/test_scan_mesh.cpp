@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The mesh of a scan (src/scan/scan_mesh.hpp) as a full breast in the
 // model: a cap's scan, fitted and meshed, has the cap's volume and base
 // perimeter measured as they are (not mirrored, the rim closed), its nipple

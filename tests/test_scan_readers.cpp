@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The scan readers (src/scan/scan_readers.hpp): every format written by
 // scan_writers is read back with its points and triangles; broken files
 // (missing, unknown format, truncated binary, malformed lines, face indices

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The nonlinear solver's building blocks: the fast Jacobian insertion, the
 // Eisenstat-Walker inexact Newton method and its bookkeeping.
 #include "block_csr_adder.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Reference benchmark (docs/VERIFICATION.md): thick-walled sphere
 // A = 10 mm, B = 20 mm of the default tissue (mu 400 Pa, lambda 8000 Pa)
 // under a dead inner pressure p0 = mu (inner radius +29 %): the

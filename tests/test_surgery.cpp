@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Surgery: incision geometry and remeshing against independent analytic
 // computations, the suture term on a cap and a block, and the neutral-state
 // reset.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // fold_site (src/jobs/surgery.hpp): where a deformation is closest to
 // folding, on P1 and P2 cells with a vertex pushed through its cell.
 #include "fixtures.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Reading a user's gmsh mesh (src/mesh/user_mesh.hpp): a good box is read
 // with its tags, areas and volume; every bad file (written in a scratch
 // folder through the gmsh API) is refused with a message that names the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mms.hpp"
 #include "geometry_options.hpp"
 #include "half_cap.hpp"

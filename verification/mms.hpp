@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Method of manufactured solutions for the full energy (tissue + skin + base
 // springs, gravity and sutures off): verification/forms/mms.py. On the half cap refined

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Manufactured solution for nearly incompressible tissue
 // (verification/forms/mms_mixed.py): the tissue of eq. (5) with the base

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A plain Newton method for verification problems that bring their own
 // forms (MMS, the sphere benchmark): MUMPS LU, full steps halved while the

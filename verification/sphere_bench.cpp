@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "sphere_bench.hpp"
 #include "tagged_mesh.hpp"
 #include "errors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Reference benchmark: a thick-walled sphere A <= |X| <= B of the
 // compressible neo-Hookean tissue (paper eq. 5), inflated by a dead inner

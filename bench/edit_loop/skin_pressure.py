@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Throw-away term of the edit-loop benchmark (bench/edit_loop.sh): a dead
 pressure p on the skin, pushing along the reference outward normal N,
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # CalculiX 2.20 and breastsim on the peers' gravity-loaded half cap
 # (meshes/peers/README.md: mu = 2100 Pa, lambda = 0, rho = 970 kg/m^3,
 # g = 9.81 m/s^2 along -z, base fixed, symmetry x = 0 sliding, no skin, P1),

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The peers' half cap for CalculiX (bench/peer/calculix_bench.sh).
 
     peer_inp.py mesh GEO LC OUT.msh   mesh GEO like `gmsh -3 GEO -setnumber lc LC

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The composition of the independent-truth benchmark.
 
 Every recording is a dict:

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Generate the independent-truth benchmark recordings.
 
     python3 bench/truth/generate.py [--list] [--only NAME[,NAME...]] [--redo]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Neutral geometry of the truth model: the half spherical cap (x >= 0).
 
 Written for the truth generator only (not shared with src/ or forms/).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """A truth problem: the baseline physics plus a set of hidden effects on one
 element degree, sharing the mesh and the unknown of that degree.
 

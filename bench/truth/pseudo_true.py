@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Pseudo-true values of the candidates for the independent-truth recordings.
 
 The hidden effects have other forms than breastsim's candidates, so "the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Writing recordings in breastsim's format (breastsim-recording/1, the keys
 read by calibrate/inputs/recording.cpp) and the benchmark manifest.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Score a committed benchmark run again against the pseudo-true values
 computed since (pseudo_true.py's file beside the manifest), without
 diagnosing again.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Run `breastsim diagnose` on the independent-truth recordings and score it.
 
     python3 bench/truth/run_diagnose.py BUILD_DIR [--only NAME,...] [--classes control,weak,...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Equilibrium of the truth model: minimise the total energy
 Pi(u) = E_tissue + E_gravity + sum E_effects over P2 displacements with
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Strength calibration: find the effect strength s whose peak shape change
 against the effect-free truth is a target T (mm).
 

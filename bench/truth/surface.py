@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The deformed skin of the P2 truth: curved 6-node triangles, sampling of
 points uniformly in deformed area, and the shape change between two solves.
 

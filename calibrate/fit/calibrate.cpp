@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "calibrate.hpp"
 #include "geometry_options.hpp"
 #include "calibration_report.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // `breastsim calibrate`: fit case parameters to measurements (the paper's
 // parameter finder). Orchestrates forward model, objective, optimiser,

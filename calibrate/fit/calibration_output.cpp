@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "calibration_output.hpp"
 #include "calibration_plots.hpp"
 #include "output.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The files of a calibration (calibrated.toml, report.json, the surfaces and
 // the pictures) and its printable summary.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "calibration_report.hpp"
 #include "log.hpp"
 #include "misfit.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The report of a calibration (report.json, docs/CALIBRATION.md "Outputs"):
 // the pieces calibrate() assembles, and what it warns about on the way.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "checkpoint.hpp"
 #include "errors.hpp"
 #include "input_file.hpp"

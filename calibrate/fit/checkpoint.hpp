@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Calibration checkpoint: the best parameters so far and the number of
 // evaluations, rewritten (atomically) after every evaluation so that an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The parameters a calibration fits (--fit mu,c,R,...): their case keys,
 // their search bounds, and the log-space coordinates the optimiser works in,

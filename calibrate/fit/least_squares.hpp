@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Bounded Levenberg-Marquardt for weighted least squares, min |r(y)|^2, with
 // a forward-difference Jacobian J = dr/dy (each column one evaluation of r):

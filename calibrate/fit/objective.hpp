@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The calibration objective in log-space coordinates y = ln(p):
 //   r(y) = weighted residuals (misfit.hpp),  chi2(y) = |r(y)|^2,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // NLopt driver: minimise chi2(y) over the box of log bounds with an
 // algorithm chosen by name. Derivative-free: bobyqa (LN_BOBYQA), sbplx

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Calibration with scans (docs/SCANS.md "Calibration with scans"): the material parameters p (mu; c where the base springs are
 // on) together with the stress-free neutral state, from scans of one breast

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "uncertainty.hpp"
 #include <cmath>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Uncertainty of the fitted parameters from the Gauss-Newton approximation
 // at the optimum. With J = dr/dy the Jacobian of the weighted residuals in

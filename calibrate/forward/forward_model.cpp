@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "forward_model.hpp"
 #include "case_options.hpp"
 #include "cap_morph.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The forward map of a calibration: case parameters -> observables in each
 // measured posture. Keeps one mesh/model and warm-starts each posture from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Weighted misfit between measurements and the model's observables:
 //   r_i = (G_i(p) - G_obs,i) / sigma_i,    chi2 = sum_i r_i^2.

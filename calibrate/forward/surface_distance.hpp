@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Distance from recorded points to a simulated (deformed) skin surface.
 // Each point p is matched to its closest point q on the triangle surface;

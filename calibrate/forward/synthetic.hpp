@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Synthetic measurements from the forward model (for tests, examples and
 // checking what a set of measurements can identify): solve the case in each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "calibrate_request.hpp"
 #include "case_groups.hpp"
 #include "geometry_options.hpp"

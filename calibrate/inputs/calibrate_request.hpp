@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // What `breastsim calibrate` is asked (after the command line is parsed),
 // checked against the starting case before a long fit, and its data file

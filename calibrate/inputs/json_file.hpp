@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Read a JSON input document once, with the project's messages: the file
 // cannot be read, is too large, is not valid JSON, or repeats a key (InputError).

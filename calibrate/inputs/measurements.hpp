@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Calibration input: what is measured on the patient (docs/CALIBRATION.md).
 // A measurement file (JSON, SI units) is read and checked here, once; every

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // 3D surface recordings of one breast in several postures (README,
 // "Recording format"): unordered skin points of the half breast (x >= 0) per

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "calibration_plots.hpp"
 #include "errors.hpp"
 #include "log.hpp"

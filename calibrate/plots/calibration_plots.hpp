@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Pictures of a calibration result folder: the plots of report.json made by
 // src/viewer/calibration_plots.py (misfit history, measured vs model per

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "app_server.hpp"
 #include "data_folder.hpp"
 #include "errors.hpp"

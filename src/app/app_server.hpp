@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // `breastsim serve`: the planning app's HTTP server (cpp-httplib). One page
 // and a JSON API over the library: the case schema and checks answered at

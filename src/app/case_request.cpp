@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "case_request.hpp"
 #include "errors.hpp"
 #include "posture.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A case from a request: JSON {key: value} overrides on the defaults, each
 // value set through Config::set_text (the same parse and messages as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A job's solver process: this program started again (posix_spawn, no shell)
 // with stdout and stderr into a file, the default signal mask and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The server's data folder (--data): job records and results live in
 // <data>/jobs/<id>/. breastsim writes only into a folder that it created (it

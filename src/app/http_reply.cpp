@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "http_reply.hpp"
 #include "strict_json.hpp"
 #include "errors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Replies: bytes with their type; of the JSON API a document with a
 // status, an error {"error": message} with its status, and the common

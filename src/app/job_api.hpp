@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The job routes of the API: POST /api/jobs {kind, overrides} -> id,
 // GET /api/jobs, GET /api/jobs/<id>, POST /api/jobs/<id>/cancel,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The structured progress channel of a calibration job: every evaluation of
 // the misfit as one JSON line {"n", "chi2", "params": {name: value},

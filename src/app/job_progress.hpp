@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The progress of a running job as the server's record shows it: a fraction
 // (0..1) and the stage. Simulate, surgery, sweep and scan jobs report

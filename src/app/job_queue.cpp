@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "job_queue.hpp"
 #include "case_request.hpp"
 #include "child_process.hpp"

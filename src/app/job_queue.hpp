@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The queue of long work: `workers` threads each run one job at a time as a
 // child process of this program (job_runner), so a crashing or failing solve

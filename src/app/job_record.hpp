@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The record of one job (job.json in its folder): what was asked, its state
 // and progress, the error of a failed run, the result summary of a finished

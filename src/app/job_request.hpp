@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A job request, checked at the edge before anything is queued:
 //   {"kind": "simulate" | "surgery", "overrides": {key: value}}

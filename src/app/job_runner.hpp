@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The job process: `breastsim serve --run-job <job folder>` started by the
 // server for each job. It reads request.json, logs the library's stages into

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The job records under <data>/jobs/<id>/: job.json (the record, written
 // only by the server, atomically through a temporary sibling) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "plan_api.hpp"
 #include "case_request.hpp"
 #include "errors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The planning requests answered at once (no solve): the case-key schema,
 // a check of case overrides, the incision points and planes for (a, s, h, d)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The structured progress channel of a simulate, surgery, sweep or scan job:
 // every stage the library reports (breastsim::Progress: the stage that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "recording_api.hpp"
 #include "errors.hpp"
 #include "recording.hpp"

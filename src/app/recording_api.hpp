@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A 3D surface recording (breastsim-recording/1, as `breastsim record`
 // writes and `calibrate` reads it) sent by the page: checked as `calibrate`

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "report.hpp"
 #include "case_request.hpp"
 #include "errors.hpp"

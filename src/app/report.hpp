@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The printable report of a finished surgery: pictures from the page's
 // renderer (PNG) and the numbers of the job's record: the plan (a, s, h, d)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // POST /api/jobs/<id>/report: the printable report of a finished surgery
 // (report.hpp) from the pictures the page rendered and the records of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Requests whose headers are ambiguous or abusive are answered 400 before any
 // routing (RFC 9112 section 3.2 and 6.3): more than one Host, an empty Host,

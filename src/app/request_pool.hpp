@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The threads that answer requests: a fixed number of threads and a bounded
 // queue of accepted connections. When the queue is full the listening thread

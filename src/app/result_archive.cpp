@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "result_archive.hpp"
 #include "output_target.hpp"
 #include <cstring>

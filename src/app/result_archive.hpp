@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A finished job's result folder as one download: a POSIX tar archive
 // (ustar) of the files its marker lists, built in memory, at most

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // What the planning app shows of a finished job, from its result folder
 // (summary.json, the skin surfaces) and its case: per posture the nipple

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A scan job in the job process: the uploaded skin scan (stored by the
 // server as <job folder>/scan.<format>) becomes the patient's model as the

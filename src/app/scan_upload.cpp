@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_upload.hpp"
 #include "errors.hpp"
 #include "http_reply.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The scan upload: POST /api/scans?format=stl&units=mm&posture=standing
 // [&mesh_size=0.01] with the file's bytes as the body (Content-Type:

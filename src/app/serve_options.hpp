@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The options of `breastsim serve` (the planning app's HTTP server), checked
 // once at the edge with messages naming the option, the value and the range.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "static_files.hpp"
 #include "assets.hpp"
 #include <array>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The page's files, served read-only from a fixed table (URL -> file): the
 // app (src/app/web) and three.js with its orbit controls

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A small sweep around a plan, as a job: {"kind": "sweep", "overrides":
 // {...}, "vary": {"a": [25, 30, 35], "h": [0.02, 0.025, 0.03]}}: one or two

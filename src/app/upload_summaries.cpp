@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "upload_summaries.hpp"
 #include "fit_parameters.hpp"
 #include "result_summary.hpp"

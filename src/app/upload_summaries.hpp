@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // What the planning app shows of a job made from an uploaded file: a
 // calibration from a 3D surface recording (the point-to-skin fit of the

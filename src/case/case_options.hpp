@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The case section of the schema: the case's name, its neutral geometry
 // (HalfCapSpec), the base condition, gravity and the requested postures.

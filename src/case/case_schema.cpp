@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // schema() (schema.hpp): the option structs' declarations, section by
 // section, then the physics parameters and term switches generated from
 // forms/. A unit without a header: the option structs read a Config, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "config.hpp"
 #include "strings.hpp"
 #include "breastsim_registry.hpp"

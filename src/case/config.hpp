@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Case configuration: values for the keys of the schema (schema.hpp), TOML
 // loading, --set overrides and validation. Input is checked here, once; messages name the key, the value

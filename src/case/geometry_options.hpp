@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The geometry keys of a case: the neutral half cap (geometry.*) and the
 // incision of the surgery (incision.*), each a plain struct that declares

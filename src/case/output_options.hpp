@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The last fixed section of the schema: the resource limit and the output
 // formats.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Patient postures (docs/MODEL.md): gravity in the body frame as a function of the
 // angle theta between the chest and the vertical,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The case-file key schema: every key with its type, unit, default, allowed
 // range and meaning; the fixed keys declared by the option structs of their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The solver section of the schema: Newton and its linear solver, grid
 // sequencing (the coarse start), load stepping and extra PETSc options;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The surgery section of the schema: the incision (IncisionSpec) and the
 // accepted suture gap.

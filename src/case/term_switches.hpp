@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The term switches terms.<term>, one per energy term generated from forms/
 // (forms/registry.py), with the term's default.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim calibrate MEASUREMENTS.json`: fit case parameters to measurements.
 #include "calibrate_job.hpp"
 #include "case_options.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A subcommand of the breastsim CLI: its CLI11 parser and the action run
 // after a successful parse (returns the exit code). Each subcommand lives in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim converge CASE.toml --levels N [--order 1,2] [--quantity ...]
 // [--stage preop|surgery] [--mms [--mms-meshes nested|split|remesh]
 // [--mms-length L --mms-amplitude A --mms-kappa K]]`:

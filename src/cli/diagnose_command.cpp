@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim diagnose RECORDING.json --case CASE.toml`: locate where the
 // simulation and a 3D recording differ, name the physics that was left out,
 // model it, refit and show the fit improve (docs/DIAGNOSE.md).

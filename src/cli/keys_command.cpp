@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim keys`: every case-file key with its type, unit, default, allowed
 // range and meaning, as a Markdown table (the schema and the UFL terms' parameters).
 #include "command.hpp"

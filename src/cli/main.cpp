@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // breastsim command-line interface: a thin layer over the library. Each
 // subcommand is in its own file (see command.hpp) and listed once below.
 #include "errors.hpp"

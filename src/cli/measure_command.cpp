@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim measure CASE.toml`: synthetic measurements from the forward model.
 #include "case_options.hpp"
 #include "command.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim neutral-state CASE.toml --posture standing`: the stress-free
 // neutral state of the case's shape, recorded in a loaded posture.
 #include "case_options.hpp"

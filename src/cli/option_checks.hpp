@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Checks of command-line options shared by the subcommands: each throws
 // InputError naming the option, the value and what is allowed.

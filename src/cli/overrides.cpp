@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "overrides.hpp"
 #include "errors.hpp"
 #include "petsc.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Shared CLI helpers: load a case with --set overrides; pass PETSc options
 // (checked); the --out/--force options and the claim of the result folder.

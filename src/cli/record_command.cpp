@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim record CASE.toml --out REC.json [--hidden NAME --value Q]`:
 // a synthetic 3D surface recording of the case with one hidden candidate
 // physics (or none), on a finer mesh, with noise.

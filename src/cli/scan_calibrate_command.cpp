@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim scan-calibrate SCAN1 --posture standing SCAN2 --posture supine
 // [SCAN3 --posture ...] --units mm --chest CHEST [--fit mu[,c]] [--predict
 // SCAN --predict-posture all_fours] --out DIR`: the material and the neutral

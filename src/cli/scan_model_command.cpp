@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim scan-model SCAN --units mm --posture standing [--chest CHEST]
 // [--nipple x,y,z] --out DIR`: a skin scan becomes a tagged mesh and a case
 // (src/jobs/scan_model.hpp).

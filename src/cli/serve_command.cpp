@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim serve`: the surgeon's planning app (an HTTP server on this
 // machine; docs/APP.md). The hidden `--run-job FOLDER` is how the server runs
 // each job in a process of its own.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim simulate CASE.toml`: solve a case in each requested posture.
 #include "config.hpp"
 #include "case_options.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim surgery CASE.toml`: incision, sutures, final neutral state and
 // post-operative postures.
 #include "log.hpp"

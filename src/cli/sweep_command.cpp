@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim sweep CASE.toml --vary a=25,30,35 --vary h=0.02,0.03`: the
 // surgery on a grid of incisions, one table.
 #include "errors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim synthetic-patient --volume 500 --ptosis 0.3 ... --posture
 // standing --out DIR`: a synthetic patient's reference breast, forward
 // solved and sampled to a scan with holes and noise (src/jobs/scan_synthetic.hpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // `breastsim view RESULT_DIR`: (re)render the pictures of a result folder and
 // write its self-contained 3D page index.html.
 #include "errors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Where the program's assets are (the picture scripts and the 3D page's
 // files, the planning app's page, three.js), found relative to the running

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Independent solves over MPI sub-communicators: the ranks of a communicator
 // split into groups of `ranks_per_case` consecutive ranks, each group running

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Error types of breastsim. InputError: the user's input is wrong (exit code 2).
 // SolveError: a physically or numerically impossible request (exit code 3).

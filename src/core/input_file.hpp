@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Input files checked once, at the edge: a missing file, a symbolic-link loop,
 // a folder, a named pipe or a device is refused (InputError, exit code 2) with

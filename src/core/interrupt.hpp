@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // SIGINT, SIGTERM, SIGHUP and SIGPIPE: the run stops, its staging folders and
 // lock files are removed, its child processes (picture scripts) are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Rank-0 logging on top of spdlog. Quiet mode raises the level to warnings.
 // Progress: at the default level, debug messages (load steps, Newton

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Work that only rank 0 does (file-system changes), with its outcome shared:
 // on_root() runs `f` on rank 0 and every rank then throws what it threw;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "petsc_option_rules.hpp"
 #include <algorithm>
 #include <cctype>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Which PETSc options a case file or the command line may pass. PETSc options
 // can read and write files, start debuggers and open windows; a case file

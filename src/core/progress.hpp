@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Progress of a long job through a callback: the stage that begins and the
 // fraction of the whole job done before it (0..1). A part of a job (a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "safe_write.hpp"
 #include <cerrno>
 #include <fcntl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Writing files without following symbolic links: a link planted where
 // breastsim writes makes the write fail (ELOOP) instead of writing through it.

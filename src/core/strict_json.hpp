@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // JSON from users, parsed strictly: a key given twice in one object is an
 // error (nlohmann-json would keep the last value silently).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Small text helpers shared by the case reader and the command line.
 #include <algorithm>

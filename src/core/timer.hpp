@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The one timer of breastsim: dolfinx's common::Timer, so that every timed
 // task is also summed in dolfinx's timing table (count, total, mean; printed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The compiled forms of the mixed (u, p) formulation (tissue.formulation =
 // mixed; forms/mixed_forms_common.py): Taylor-Hood, every registered term

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The C++ view of the UFL model (forms/): parameters with their case keys,
 // units, defaults and ranges; the energy terms and their default switches;

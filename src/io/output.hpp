@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Result folders: everything is written into a staging folder, a sibling of
 // the claimed target (output_target.hpp), that only replaces the target when

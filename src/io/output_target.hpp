@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Where a run may write its result folder. breastsim replaces only a folder
 // it wrote itself: one that carries its marker file (.breastsim-result) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "surface_export.hpp"
 #include "breastsim_registry.hpp"
 #include "output.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The skin of a model as a triangle surface for pictures and the 3D page:
 // reference (neutral) and deformed vertex positions, gathered to rank 0. A

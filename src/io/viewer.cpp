@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "viewer.hpp"
 #include "assets.hpp"
 #include "errors.hpp"

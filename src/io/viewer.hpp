@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Pictures (PNG, matplotlib) and the 3D page (index.html, three.js) of a
 // result folder, made by the Python scripts in src/viewer/ run under

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "convergence.hpp"
 #include "viewer.hpp"
 #include "case_options.hpp"

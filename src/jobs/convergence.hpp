@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Mesh-convergence studies: a case solved on uniformly refined
 // meshes (geometry.refinements = 0 .. N-1, refinement ratio r = 2), per

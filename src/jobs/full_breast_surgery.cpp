@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "full_breast_surgery.hpp"
 #include "breastsim_registry.hpp"
 #include "case_options.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Breast reduction on a full breast (geometry.mesh_file without a
 // "symmetry" group: a scan's mesh or its neutral reference): the skin of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "full_breast_sutures.hpp"
 #include "errors.hpp"
 #include "log.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The sutures of a full breast (docs/MODEL.md "Full breast and patient scans"):
 // the keel faces sewn to each other by the tissue-to-tissue suture

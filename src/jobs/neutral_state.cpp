@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "neutral_state.hpp"
 #include "breastsim_registry.hpp"
 #include "case_options.hpp"

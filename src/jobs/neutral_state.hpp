@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The `neutral-state` job: the case's geometry (its user mesh, or the cap) is
 // a shape recorded in a loaded posture; the stress-free reference that the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_model_job.hpp"
 #include "breastsim_registry.hpp"
 #include "msh_writer.hpp"

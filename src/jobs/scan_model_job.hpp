@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The `scan-model` job: a skin scan (and optionally a chest-wall surface)
 // recorded in a posture becomes a tagged mesh and a case in the breast frame

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The `synthetic-patient` job: test data without real patients. A non-cap
 // reference breast (src/scan/synthetic_breast.hpp: volume, ptosis, lateral

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The forward simulation: mesh the neutral half breast, bind the case's
 // parameters, and solve each posture from the neutral state.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "surgery.hpp"
 #include "dense_table.hpp"
 #include "case_options.hpp"

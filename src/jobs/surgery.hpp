@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Breast reduction surgery (docs/MODEL.md): pre-operative postures, incision by the
 // planes P1 and P2 with remeshing, suturing (knitting conditions) without

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "sweep.hpp"
 #include "model_setup.hpp"
 #include "neutral_mesh.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Incision sweeps: the surgery on a grid of incision parameters, reduced to
 // one table row per combination.

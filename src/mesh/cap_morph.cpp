@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "cap_morph.hpp"
 #include "half_cap.hpp"
 #include <algorithm>

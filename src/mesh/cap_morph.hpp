@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Mesh morphing of the neutral half cap (docs/MODEL.md): move the nodes of a mesh
 // of the cap (R0, H0) onto the cap (R, H) without changing the topology, so

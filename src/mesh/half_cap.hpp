@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Parametric half breast in its neutral state (docs/MODEL.md): the part x >= 0 of a
 // spherical cap with base radius R in the plane y = 0 and apex (nipple) at

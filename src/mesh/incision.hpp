@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The incision of a breast reduction (docs/MODEL.md, "Incision") on the neutral
 // half cap: points A, B, C, D and planes P1 ("ABD") and P2 ("BCD") from the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mesh_from_gmsh.hpp"
 #include "breastsim_registry.hpp"
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Conversion of a root-rank gmsh TaggedMesh into a distributed dolfinx mesh
 // with its facet tags.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mesh_quality.hpp"
 #include <array>
 #include <dolfinx/common/IndexMap.h>

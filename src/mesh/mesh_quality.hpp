@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Shape quality of a tetrahedral mesh (corner vertices of each cell).
 #include <dolfinx/mesh/Mesh.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "msh_writer.hpp"
 #include <algorithm>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A TaggedMesh as a gmsh ASCII mesh file (format 2.2) with named physical
 // groups: the volume "tissue" and the facet tags by name, so that the user

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "nested_mesh.hpp"
 #include "half_cap.hpp"
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Nested uniform refinement of a tagged P1 tetrahedral mesh, without moving
 // any node (verification): every tetrahedron is split into 8 by its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The case's neutral (pre-operative) geometry: the half cap of geometry.R,
 // geometry.H at the case's mesh size, order and refinements (HalfCapSpec),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "point_location.hpp"
 #include <algorithm>
 #include <array>

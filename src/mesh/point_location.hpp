@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Locating points in the cells of a mesh of any geometry order, for
 // evaluating a Function there (transfer between non-matching meshes).

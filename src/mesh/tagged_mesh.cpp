@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "tagged_mesh.hpp"
 #include <cstdlib>
 #include <gmsh.h>

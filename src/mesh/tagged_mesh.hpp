@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A tetrahedral mesh with tagged boundary facets, as produced by gmsh on the
 // root rank (other ranks hold empty arrays). Node indices are 0-based and

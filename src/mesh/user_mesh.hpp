@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A user's tetrahedral gmsh mesh (.msh of format 2.2 or 4.x, 4-node or
 // 10-node tetrahedra) as the neutral geometry, in the frame of docs/MODEL.md:

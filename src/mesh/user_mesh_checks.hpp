@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The geometric checks of a user's mesh (src/mesh/user_mesh.hpp) once it is
 // a TaggedMesh: units, cell volumes, curved cells, the faces against the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "block_csr_adder.hpp"
 #include <algorithm>
 #include <stdexcept>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Fast addition of element matrices into an assembled PETSc AIJ matrix
 // (serial SeqAIJ, or MPIAIJ: its diagonal and off-diagonal SeqAIJ parts)

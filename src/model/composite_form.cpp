@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "composite_form.hpp"
 #include <dolfinx/fem/FiniteElement.h>
 #include <dolfinx/fem/Function.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The sum of several forms of one rank as a single dolfinx Form. Each term k
 // is its own compiled form (forms/term_forms.py) with a runtime switch on_k;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Assemble a linear form into a ghosted PETSc vector from zero:
 //   b = 0 (owned and ghost entries), b += L, ghost contributions summed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mixed_space.hpp"
 #include <dolfinx/fem/Function.h>
 

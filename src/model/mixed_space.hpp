@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Helpers for a mixed (u, p) space W = V_u x Q whose first subspace is the
 // blocked vector displacement. In dolfinx 0.5.2, W.sub({0, i}) of a blocked

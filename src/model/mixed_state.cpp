@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mixed_state.hpp"
 #include "breastsim_mixed_registry.hpp"
 #include "errors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The state of the mixed (u, p) formulation (tissue.formulation = mixed,
 // forms/mixed_forms_common.py): Taylor-Hood w = (u, p) in W = V_u x Q. The

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "model.hpp"
 #include "dense_table.hpp"
 #include "ghosted_assembly.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The breast model: displacement space, the composed UFL energy with its
 // runtime Constants (bound by name from the generated registry), the

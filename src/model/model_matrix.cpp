@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Model's matrix helpers: the Jacobian's pattern inserted into a new
 // matrix, partner couplings added to it.
 #include "model.hpp"

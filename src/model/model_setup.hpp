@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A case's model: the neutral mesh's model with the case's parameters and
 // term switches bound, and gravity for a posture.

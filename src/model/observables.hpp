@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Observables of a deformed breast (docs/MODEL.md), computed on the skin nodes:
 // nipple position, projection (max y), z_min, z_max, base perimeter (full

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "partner_field.hpp"
 #include "mesh_from_gmsh.hpp"
 #include "ghosted_assembly.hpp"

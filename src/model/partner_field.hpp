@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Partner fields (forms/model.py, forms/tissue_suture.py): a term's energy may
 // use, besides u, a Coefficient w = P u holding the values of u at the images

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "reference_reset.hpp"
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/DofMap.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The final neutral state (docs/MODEL.md): the current deformed configuration
 // becomes the new stress-free reference. The mesh geometry is moved by the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "chest_curvature.hpp"
 #include "errors.hpp"
 #include "scan_linalg.hpp"

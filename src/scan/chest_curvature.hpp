@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // How far the chest wall is from the chest plane that the mesh's base lies
 // on (the scan's mesh has a planar base, y = 0 of the breast frame). The

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "full_breast_incision.hpp"
 #include "errors.hpp"
 #include "incision.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The incision (docs/MODEL.md "Incision", "Full breast and patient scans") on a
 // full breast's own shape: the fitted skin r(d) d (radial_fit.hpp) in the

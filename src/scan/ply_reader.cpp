@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // PLY (Turk 1994): a text header (ply / format / element / property /
 // end_header), then the elements in ASCII or binary little-endian. The
 // vertex element's x, y, z are read; a face element's first list property

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The skin as a star-shaped surface about the base centre (the origin of the
 // breast frame, on the chest plane y = 0): x = r(d) d for unit directions d

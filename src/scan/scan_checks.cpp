@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_checks.hpp"
 #include "errors.hpp"
 #include "scan_intersections.hpp"

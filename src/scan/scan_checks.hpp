@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The checks that refuse a dirty scan, each with an InputError naming what
 // is wrong and where (vertex or triangle index, coordinates in the stated

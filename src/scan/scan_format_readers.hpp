@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The per-format readers behind read_scan (scan_readers.hpp): each fills
 // points (in the file's unit) and triangles from the file's bytes, throwing

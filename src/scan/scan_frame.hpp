@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The breast frame of a scan (docs/MODEL.md, "Full breast and patient scans"): y
 // along the outward chest normal, z cranial, x lateral, the origin on the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Self-intersection of a triangulated scan: two triangles that share no
 // vertex and cross each other (an edge of one passes through the other).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_linalg.hpp"
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The small dense linear algebra of the scan fit: the eigen-decomposition of
 // a symmetric 3x3 matrix (Jacobi rotations) for plane fits, and a Cholesky

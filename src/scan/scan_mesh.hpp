@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The tetrahedral mesh of a scanned breast: gmsh meshes the half ball
 // |X| <= r_m, y >= 0 (with x >= 0 for a half model) and every node is moved

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_model.hpp"
 #include "scan_readers.hpp"
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // From a skin scan (and optionally a chest-wall surface) to a tagged
 // tetrahedral mesh in the breast frame: read (scan_readers.hpp), refuse a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_readers.hpp"
 #include "errors.hpp"
 #include "scan_format_readers.hpp"

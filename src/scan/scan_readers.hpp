@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Readers of skin scans: STL (ASCII and binary), PLY (ASCII and
 // binary_little_endian; vertices x, y, z and an optional face list) and

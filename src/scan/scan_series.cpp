@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_series.hpp"
 #include "scan_readers.hpp"
 

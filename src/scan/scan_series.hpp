@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Several scans of one breast in different postures, for a calibration:
 // the first is meshed as `scan-model` meshes a scan

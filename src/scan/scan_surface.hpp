@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // A surface scan of the skin as read from a file: points (metres, scanner
 // frame) and, for a triangulated scan, triangles by point index. A point

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Checks of a triangulated scan's connectivity, each throwing an InputError
 // naming the triangle(s), vertex indices and coordinates: degenerate and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Writers of scans (the synthetic patients' and the tests'): binary and
 // ASCII STL, ASCII and binary_little_endian PLY (with faces, or vertices

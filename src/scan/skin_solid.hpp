@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The fitted skin r(d) d (radial_fit.hpp) as an OpenCASCADE solid, so that
 // the incision's booleans (planes) cut the breast's own shape: one cubic

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "synthetic_breast.hpp"
 #include "errors.hpp"
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Synthetic patients' reference (stress-free) breasts, not caps: in the
 // breast frame, the body under the skin of a distorted half ellipsoid,

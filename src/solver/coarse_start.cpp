@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "coarse_start.hpp"
 #include "errors.hpp"
 #include "geometry_options.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Grid sequencing (nested iteration) for the posture solves: solve the same
 // case on a ladder of coarser meshes first, each level started from the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "inverse_neutral_state.hpp"
 #include "errors.hpp"
 #include "log.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The stress-free neutral state of a loaded shape by inverse elastostatics.
 // The model's mesh holds the loaded shape x_s (a scan, or a forward solve);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "load_stepping.hpp"
 #include "errors.hpp"
 #include "log.hpp"

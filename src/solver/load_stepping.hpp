@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Continuation in a scalar model parameter (the gravity load factor, a
 // suture penalty, ...) with automatic step cut-back.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "newton.hpp"
 #include "log.hpp"
 #include "timer.hpp"

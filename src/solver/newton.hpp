@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Newton's method for the total energy of a Model: PETSc KSP for the linear
 // systems (MUMPS LU or GMRES + GAMG with the rigid-body near-nullspace, any

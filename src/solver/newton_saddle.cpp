@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // NewtonSolver's line search for a saddle point (the mixed (u, p)
 // formulation): the Lagrangian Pi(u, p) is concave in p, so neither an
 // energy decrease nor r . du < 0 characterises progress. Backtracking on the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "posture_solve.hpp"
 #include "case_options.hpp"
 #include "log.hpp"

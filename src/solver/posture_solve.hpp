@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // One posture solved from the neutral state: gravity ramped from 0 to 1
 // with cut-back, or Newton at full load from a guess (the coarse start's,

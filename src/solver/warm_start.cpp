@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #include "warm_start.hpp"
 #include "log.hpp"
 #include <fmt/format.h>

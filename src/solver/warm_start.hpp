@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The one fallback of every solve at full load: start from a guess (the
 // coarse start's interpolant, the level below, the last solution of a

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Plots of a `breastsim calibrate` result (headless matplotlib, Agg backend).
 
 Reads RESULT_DIR/report.json (docs/CALIBRATION.md) and writes into it:

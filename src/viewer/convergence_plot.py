@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The log-log plot of a `breastsim converge` result: relative error of each
 quantity against its Richardson extrapolation, and the MMS errors, over the
 relative mesh size.

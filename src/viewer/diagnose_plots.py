@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Residual maps of a breastsim diagnosis.
 
 Usage: python3 diagnose_plots.py RESULT_DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Write index.html: a self-contained 3D page of a breastsim result folder.
 
 The page inlines three.js (npm package `three`, installed into

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Pictures of breastsim results (headless matplotlib, Agg backend).
 
 Reads the surface_<posture>.json files of a result folder (written by

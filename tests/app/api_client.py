@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """A small client of the breastsim serve API for the tests (python3 stdlib only)."""
 import http.client
 import json

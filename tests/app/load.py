@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Load test of `breastsim serve`: 200 concurrent requests, 50 of them malformed,
 all answered with the expected status within a time bound, the server still up.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Load test of `breastsim serve` (tests/app/load.py) on a free loopback port
 # with a scratch --data folder.
 set -eu

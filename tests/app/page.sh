@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The planning app's page in headless Chromium (page_test.js) against
 # `breastsim serve` on a free loopback port with a scratch --data folder.
 # Usage: page.sh BREASTSIM CASES_DIR NODE_MODULES_DIR [SHOT_DIR]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The planning app in a real headless Chromium (Debian's chromium driven by
 // playwright-core) against a running `breastsim serve`: load -> patient
 // measurements (a value out of range is flagged as typed, the example file

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim serve` end to end, in one scratch folder, on a free loopback port:
 # refused options and data folders; hostile requests (malformed JSON, unknown
 # keys, out-of-range values, oversized bodies, path traversal, CORS, foreign

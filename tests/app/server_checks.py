@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Checks of `breastsim serve` over HTTP, one phase per call (tests/app/server.sh).
 
 Usage: server_checks.py PORT PHASE [ARGS...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Checks of the Patient step's files and of the structured progress (tests/app/server.sh).
 
 Usage: upload_checks.py PORT PHASE [ARGS...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The layer rules of docs/ARCHITECTURE.md, checked on the sources.
 
 Each folder that holds C++ sources under src/, calibrate/ (each of its

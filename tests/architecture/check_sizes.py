@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Size rules of docs/ARCHITECTURE.md: no C++ file over MAX_FILE lines and no
 function body over MAX_FUNCTION lines (from the line of its opening brace at
 the start of a line to its closing brace, the layout clang-format gives).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Bad input: every case must fail with exit code 2, a message naming the
 # problem, and leave no output folder behind.
 set -u

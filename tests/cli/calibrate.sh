@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim measure` + `breastsim calibrate` end to end on a coarse mesh:
 # the calibrated case must be accepted by `breastsim simulate` unchanged;
 # bad measurement files and unidentifiable requests exit with code 2 and

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `calibrate` and `diagnose` with --ranks-per-case 1 on 2 ranks give the
 # serial results. calibrate solves its finite-difference Jacobian's columns
 # side by side: the same fitted values and standard errors to 1e-6 relative

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Compare the observables of two breastsim summary.json files.
 
 Usage: compare_json.py A.json B.json RTOL ATOL

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim converge` end to end on a tiny case (coarse cap, 3 levels of
 # geometry.refinements, P1): convergence.json has one study with the three
 # levels, growing cell counts, the requested quantities with finite values,

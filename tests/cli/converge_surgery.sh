@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Long (label long, ~100 s): `breastsim converge --stage surgery` on the
 # default case at mesh_size 20 mm, 3 levels (421, 3368, 26944 cells after the
 # incision). Checks: the study is the post-operative standing posture; the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Missing-physics diagnosis on concealed data: a recording is made
 # by the richer model (hidden candidate HIDDEN switched on, or none for the
 # control) on a finer P2 mesh, with noise, at random skin points; `diagnose`

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Surgery on the real shape (docs/SCANS.md "Surgery on a full breast"): a
 # full, asymmetric synthetic patient goes scan -> scan-model -> neutral-state
 # -> surgery, serially and on 2 MPI ranks; every suture closes to < 0.1 mm

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Hostile-input catalogue: malformed input and dangerous output
 # targets. Every case runs inside one scratch folder S; HOME points into it
 # and the working directory is inside it, so no case can reach a real system

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Long study (label long): the apex (nipple) u_z of the default case standing
 # at lambda / mu = 1e3 under red refinement of the 30 mm cap (3 levels), with
 # tissue.formulation = mixed (P2-P1) and with the P1 displacement formulation.

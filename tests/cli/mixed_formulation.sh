@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # tissue.formulation = mixed (Taylor-Hood P2-P1) through `simulate` (~15 s):
 # the half cap at lambda / mu = 1e3 (P2, 12 mm) solves standing with the
 # default skin, springs and gravity, det F > 0, the summary names the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Long study (label long, ~90 s): the P1 MMS with the default tissue
 # (lambda / mu = 20) on four nested levels of the 16 mm cap (566 .. 289792
 # cells). Pre-asymptotic volumetric locking: the L2 order climbs towards 2

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # mpirun -n 2 gives the same observables as a serial run (to solver tolerance).
 set -eu
 BIN="$1"; CASES="$2"; HERE="$(cd "$(dirname "$0")" && pwd)"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # P2 surgery on 2 MPI ranks: the default incision on the
 # P2 half cap (standing, 10 mm mesh: 1688 cells) closes every suture to
 # surgery.max_gap (1e-4 m) on 2 ranks, and agrees with the serial run:

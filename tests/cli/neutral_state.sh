@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim neutral-state`: the cap taken as a shape recorded standing; its
 # stress-free reference, simulated standing, must reproduce the cap (nipple,
 # lowest point, projection within 1e-6 m); bad options leave no output.

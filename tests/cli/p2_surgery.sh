@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # P2 surgery closes: the default incision on the P2 half
 # cap (standing) closes every suture to surgery.max_gap and solves the
 # post-operative posture; its resected volume and post-operative nipple

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The default case's observables against stored reference values.
 # Refresh (after an intended change of the model): run the default case and
 # copy its summary.json to tests/regression/default_summary.json.

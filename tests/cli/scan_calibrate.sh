@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim scan-calibrate` (docs/SCANS.md, "Calibration with scans"): a
 # synthetic patient (400 cm3, ptosis, lateral turn, asymmetry; tissue.mu =
 # 600 Pa) scanned standing, supine and on all fours (holes, 0.5 mm noise) on

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim scan-model` (docs/SCANS.md): every bad scan or option is refused
 # with exit code 2, a message naming the defect and no output folder; a
 # spherical cap's scan and a synthetic patient's (holes, 0.5 mm noise) go

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim sweep` over a 2 x 2 grid of (a, h): the table is produced and the
 # final standing nipple height and the lower pole change monotonically:
 # a larger h lowers the new nipple; a larger a raises the nipple and the

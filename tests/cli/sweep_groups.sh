@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim sweep --ranks-per-case 1` on 2 ranks (each rank one surgery of
 # the grid, MPI sub-communicators) gives the serial sweep's table to 1e-10;
 # a K that does not divide the ranks is refused with no output.

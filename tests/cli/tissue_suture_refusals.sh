@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The tissue-to-tissue suture (terms.tissue_suture) refuses, with exit code 2,
 # a message naming it and no output left behind: on a mesh without the faces
 # suture_a / suture_b, on one MPI rank and on two (the refusal is collective).

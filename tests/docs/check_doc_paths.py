@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Check the reference documents against the repository.
 
     python3 tests/docs/check_doc_paths.py SOURCE_DIR [BREASTSIM_BINARY]

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The three independent-truth benchmark sets (bench/truth/benchmark_set.py)
 share no recording name and no noise seed, and have the documented sizes:
 main 42 (14 controls), validation 12 (2 controls), holdout and confirm 12

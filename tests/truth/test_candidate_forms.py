@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The candidates' forms in the truth code (bench/truth/forms_truth/
 candidate_forms.py) and the pseudo-true fit (bench/truth/pseudo_true.py):
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """bench/truth/rescore.py on hand-made runs: a two-recording manifest, a
 pseudo-true file and a summary.md table are rescored against the
 pseudo-true value (outside the interval, and listed as borderline: the

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """bench/truth/run_diagnose.py with a fake breastsim and hand-made diagnoses.
 
 The runner is driven end to end (main) with a fake binary that checks the

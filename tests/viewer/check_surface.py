@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Checks on surface_<posture>.json (the skin exported by `simulate`).
 
   check_surface.py FILE R H [TOL]       vertices on the neutral cap's sphere within TOL

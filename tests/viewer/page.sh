@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The 3D page of `breastsim view --compare` in headless Chromium (page_test.js):
 # the half cap drawn with its mirror image, and a full breast (a synthetic
 # patient's scan through scan-model, simulated, then `view`) drawn as it is.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The 3D page in a real headless Chromium (Debian's chromium, driven by
 // playwright-core): loads from file:// without console errors or network
 // requests, the WebGL canvas draws non-background pixels, and the posture

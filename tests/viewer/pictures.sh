@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # Pictures of `simulate` and `view`: produced, non-empty, of the requested
 # size; standing differs from supine; pre vs post differ; a missing
 # python3/matplotlib is a clear error that leaves no output.

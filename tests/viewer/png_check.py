@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Checks on PNG pictures for the viewer tests (exit 1 with a message on failure).
 
   png_check.py size FILE WIDTH HEIGHT   the PNG header says WIDTH x HEIGHT, file non-empty

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
 # The skin surface written by `simulate` (surface_<posture>.json): corners on
 # the neutral cap, outward triangles, P1 and P2, flagged as a half model to
 # mirror; a full breast (a synthetic patient's scan through scan-model) with

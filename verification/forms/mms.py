@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Method of manufactured solutions (MMS) for the full breastsim energy.
 
 Weak-form MMS: with the residual R(u; v) = dPi/du [v] of the terms it

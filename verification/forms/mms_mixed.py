@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Manufactured solution for nearly incompressible tissue: displacement
 against mixed (Taylor-Hood P2-P1) formulation.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Reference benchmark: thick-walled sphere under inner pressure.
 
 An octant of the shell A <= |X| <= B (symmetry planes x = 0, y = 0, z = 0,

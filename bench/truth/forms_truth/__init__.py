@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """UFL energy terms of the independent truth model (bench/truth).
 
 Written separately from forms/ (the simulator's terms): nothing is imported

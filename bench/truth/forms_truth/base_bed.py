@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Hidden effect: a non-uniform spring bed under the base (instead of the
 fixed base of the baseline truth).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """The forms of breastsim's candidate terms, written in the truth code from
 their documented equations (docs/DIAGNOSE.md, docs/MODEL.md, the docstring of
 forms/skin.py; nothing is imported from forms/), for one purpose: the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Baseline term of the truth (not a hidden effect): the chest wall.
 
 The skin may not pass behind the chest, the plane y = 0. A penalty on the

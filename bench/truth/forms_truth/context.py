@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Shared UFL objects of the truth model: unknowns, kinematics, measures.
 
 Reference (neutral) configuration X, displacement u (P2 on the P2 mesh),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Hidden effect: a stiffer glandular region shaped as a tilted ellipsoid
 with a smooth (logistic) edge (breastsim's gland_core: a sharp cylinder
 x^2 + z^2 < r_g^2 around the nipple axis).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Mass forces in a posture (docs/MODEL.md "Postures"):
 
     E_gravity = - int_B rho * load * g_vec . u dV,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Hidden effect: skin as a tension-only fibre net of smoothly varying areal
 stiffness (a different 2D law from breastsim's neo-Hookean tension-field
 membrane).

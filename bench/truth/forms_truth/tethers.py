@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Hidden effect: suspensory (Cooper's) ligaments as tethers on the skin with
 smooth weights around one or two attachment sites (breastsim's
 suspensory_ligament term: uniform springs on the whole upper pole Z > 0).

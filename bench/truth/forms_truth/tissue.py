@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: LGPL-3.0-or-later
 """Baseline tissue: compressible neo-Hookean body (docs/MODEL.md eq. 5),
 
     E_tissue = int_B W(F) dV,  W = mu/2 (tr(F F^T) - 3 - 2 ln J) + lambda/2 (J - 1)^2.

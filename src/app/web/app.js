@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The planning app's page: patient measurements -> plan (a, s, h, d) ->
 // surgery job -> pre/post numbers and view -> compare -> export, over the
 // JSON API of `breastsim serve` (docs/APP.md). Every value is checked by the

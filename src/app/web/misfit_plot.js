@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The misfit plot of a calibration: chi2 of every evaluation on a log
 // scale against its number, drawn live from the job's progress channel
 // (GET /api/jobs/<id>?since=N, `evaluations` [{n, chi2, params, best,

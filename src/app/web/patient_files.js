@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // Patient data from files (docs/APP.md, "The page", 1): a 3D surface
 // recording (breastsim-recording/1, as `breastsim record` writes it),
 // checked by the server as `calibrate` reads it, whose points the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The printable report of a finished surgery: the page renders the pictures
 // (the plan on the neutral breast; before | after in profile in every
 // posture; overlaid in profile and from the front in the first posture) and

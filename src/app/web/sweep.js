@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // A small sweep around the current plan (a job of kind "sweep": the
 // library's sweep() over +-1 step of two of a, s, h, d) and its table like
 // the paper's Fig. 10: one row per value of the first parameter, one column

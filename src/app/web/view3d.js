@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // The 3D view of the planning app (three.js): the neutral cap with the
 // incision (tissue to be removed tinted, planes P1, P1' and P2, points A, B,
 // C, D), and the skin surfaces of a finished job, pre and post side by side

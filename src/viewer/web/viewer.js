@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
 // breastsim 3D page: the full breast of each posture (a half model, x >= 0,
 // with its mirror image x -> -x; a full breast, e.g. a scan, as it is),
 // coloured by the displacement from the neutral shape [mm].
