@@ -55,7 +55,7 @@ std::vector<calibration::Point> sample_surface(const SkinSurface& s, int n, doub
 Recording synthetic_recording(const Config& c, const RecordingOptions& o, MPI_Comm comm)
 {
   HalfCapSpec::from(c).require_parametric_cap("record (the truth is meshed finer)");
-  if (o.points < 10 || o.points > static_cast<int>(max_recorded_points))
+  if (o.points < 10 || o.points > static_cast<int>(calibration::max_recorded_points))
     throw InputError(fmt::format("--points = {} is out of range: allowed [10, 1000000]", o.points));
   if (!(o.noise >= 0) || o.noise > 0.02)
     throw InputError(fmt::format("--noise = {} m is out of range: allowed [0, 0.02] m", o.noise));
