@@ -41,10 +41,8 @@ Command add_view_command(CLI::App& root)
                                            dir.string(), result_marker));
             OutputRules rules; // a finished, marked folder with nothing foreign in it;
             rules.protect = {"/", "", ""}; // `view .` inside a result folder is fine
-            if (auto why = refusal_reason(dir, rules))
-              throw InputError(*why);
-            check_picture_tools(MPI_COMM_WORLD);
             const auto target = OutputTarget::claim(dir.string(), rules, MPI_COMM_WORLD);
+            check_picture_tools(MPI_COMM_WORLD);
             OutputDir staging(target, MPI_COMM_WORLD);
             const bool surgery = o->compare.empty() && is_surgery_result(dir);
             if (surgery) // pre-op, post-op against pre-op, and the page in postop/

@@ -19,10 +19,7 @@ inline std::vector<std::string> split_list(const std::string& text, char separat
       items.push_back(item);
   return items;
 }
-} // namespace breastsim
 
-namespace breastsim
-{
 /// `text` for a message: at most `max` bytes, longer text cut with its length
 /// stated ("1234567... (100000 bytes)"), so a huge value never floods the terminal.
 inline std::string shorten(const std::string& text, std::size_t max = 80)
@@ -31,10 +28,7 @@ inline std::string shorten(const std::string& text, std::size_t max = 80)
     return text;
   return text.substr(0, max) + "... (" + std::to_string(text.size()) + " bytes)";
 }
-} // namespace breastsim
 
-namespace breastsim
-{
 /// The candidate closest to `word` by edit distance (insertions, deletions,
 /// substitutions), if it is close enough to be a likely misspelling: at most
 /// a third of the word's length, and at least 1.

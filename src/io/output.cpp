@@ -41,11 +41,10 @@ fs::path as_user_sees(const fs::path& file)
   return file;
 }
 
-/// The message for a failed write of `file`: the device is full, the file
-/// is larger than the file-size limit, or `what`.
-std::string write_failure(const fs::path& file, const std::string& what)
+/// The message for a failed write of `file` with error `err` (errno): the
+/// device is full, the file is larger than the file-size limit, or `what`.
+std::string write_failure(const fs::path& file, int err, const std::string& what)
 {
-  const int err = errno; // before fs::space can change it
   std::error_code ec;
   const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
   const auto space = fs::space(dir, ec);
@@ -160,9 +159,8 @@ void OutputDir::commit_files()
             for (const auto& rel : staged) // all checked before anything moves
               for (fs::path p = rel; !p.empty(); p = p.parent_path())
                 if (in_the_way(p, p != rel))
-                  throw InputError(refusal_reason(_final, _rules).value_or(fmt::format(
-                      "refusing to write '{}': it is {}", (_final / p).string(),
-                      entry_kind(_final / p))));
+                  throw InputError(fmt::format("refusing to write '{}': it is {}",
+                                               (_final / p).string(), entry_kind(_final / p)));
             for (const auto& rel : staged) // rename replaces the entry, never follows a link
             {
               fs::create_directories((_final / rel).parent_path());
@@ -189,8 +187,7 @@ void write_text(const fs::path& file, const std::string& text, MPI_Comm comm)
             }
             catch (const std::system_error& e)
             {
-              errno = e.code().value();
-              throw std::runtime_error(write_failure(file, e.code().message()));
+              throw std::runtime_error(write_failure(file, e.code().value(), e.code().message()));
             }
           });
 }
@@ -216,8 +213,7 @@ void write_owned_json(const fs::path& file, nlohmann::json j, MPI_Comm comm)
                 throw InputError(fmt::format("cannot write '{}': '{}' beside it is in the way "
                                              "(breastsim writes there first; move it away)",
                                              file.string(), tmp.filename().string()));
-              errno = e.code().value();
-              throw std::runtime_error(write_failure(file, e.code().message()));
+              throw std::runtime_error(write_failure(file, e.code().value(), e.code().message()));
             }
             interrupt::register_path(tmp);
             std::error_code ec;
@@ -226,7 +222,7 @@ void write_owned_json(const fs::path& file, nlohmann::json j, MPI_Comm comm)
             {
               fs::remove(tmp, ec);
               interrupt::unregister_path(tmp);
-              throw std::runtime_error(write_failure(file, ec.message()));
+              throw std::runtime_error(write_failure(file, ec.value(), ec.message()));
             }
             interrupt::unregister_path(tmp);
           });
@@ -310,7 +306,7 @@ void write_fields(Model& model, const fs::path& stem, bool xdmf, bool vtk)
   }
   catch (const std::exception& e)
   {
-    throw std::runtime_error(write_failure(file, e.what()));
+    throw std::runtime_error(write_failure(file, errno, e.what())); // errno of HDF5's failed write
   }
 }
 } // namespace breastsim

@@ -387,11 +387,10 @@ OutputTarget::~OutputTarget()
 fs::path claim_output_file(const std::string& given, const OutputRules& rules, const std::string& what)
 {
   // The folder normalised, the file's own name not resolved: a link there is refused below.
-  const fs::path named = normalise_path(given, what);
-  const fs::path p = fs::is_symlink(fs::symlink_status(fs::absolute(given)))
-                         ? normalise_path(fs::absolute(given).parent_path().string(), what)
-                               / fs::path(given).filename()
-                         : named;
+  const fs::path given_abs = fs::absolute(given);
+  const fs::path p = fs::is_symlink(fs::symlink_status(given_abs))
+                         ? normalise_path(given_abs.parent_path().string(), what) / given_abs.filename()
+                         : normalise_path(given, what);
   auto no = [&](const std::string& why)
   { return InputError(fmt::format("refusing to write {} '{}': {}", what, p.string(), why)); };
   if (auto why = protected_reason(p, rules))
