@@ -1,10 +1,25 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "objective.hpp"
 #include "misfit.hpp"
+#include "schema.hpp"
+#include <cmath>
 #include <limits>
 
 namespace breastsim::calibration
 {
+namespace
+{
+/// Whether column j has exact sensitivities: a material parameter bound to a
+/// UFL Constant (the shape R, H moves the mesh: forward differences).
+bool exact_column(const FitParameter& p)
+{
+  if (p.role == generated::FitRole::shape)
+    return false;
+  const KeyInfo& k = key_info(p.key);
+  return !k.ufl_name.empty() && k.type == KeyType::number;
+}
+} // namespace
+
 Objective::Objective(Config base, const Measurements& data, std::vector<FitParameter> fit,
                      ForwardModel& forward, int evaluations_done)
     : _base(std::move(base)), _data(data), _fit(std::move(fit)), _forward(forward),
@@ -83,23 +98,62 @@ std::vector<std::vector<double>> Objective::residuals_at(const std::vector<std::
 Matrix Objective::jacobian(const std::vector<double>& y, double h, bool central)
 {
   const std::vector<double> r0 = residuals(y);
+  Matrix J(r0.size(), std::vector<double>(y.size()));
+  std::vector<std::size_t> exact, differenced;
+  for (std::size_t j = 0; j < y.size(); ++j)
+    (exact_column(_fit[j]) ? exact : differenced).push_back(j);
+
+  // Exact columns first, while the forward model is at y (the differenced
+  // columns' solves move it): dr_i/dy_j = p_j dG_i/dp_j / sigma_i.
+  if (!exact.empty())
+  {
+    const Config c = with_parameters(_base, _fit, y);
+    std::vector<std::string> keys;
+    for (std::size_t j : exact)
+      keys.push_back(_fit[j].key);
+    auto columns = [&]
+    {
+      const std::size_t np = _forward.postures().size(), ne = exact.size();
+      std::vector<std::vector<Observables>> dG(np); // dG[posture][e]
+      for (std::size_t i = 0; i < np; ++i)
+        dG[i] = _forward.sensitivities(i, c, keys);
+      std::vector<double> flat(r0.size() * ne); // row-major, J restricted to the exact columns
+      for (std::size_t e = 0; e < ne; ++e)
+      {
+        std::vector<Observables> per_posture(np);
+        for (std::size_t i = 0; i < np; ++i)
+          per_posture[i] = dG[i][e];
+        const double p = std::exp(y[exact[e]]);
+        for (std::size_t k = 0; k < r0.size(); ++k)
+          flat[k * ne + e] = p * model_value(_data.items[k], per_posture) / _data.items[k].sigma;
+      }
+      return flat;
+    };
+    // Every group computes them (each keeps its warm starts); all take the first group's.
+    const std::vector<double> flat = _groups ? _groups->replicate(columns) : columns();
+    for (std::size_t k = 0; k < r0.size(); ++k)
+      for (std::size_t e = 0; e < exact.size(); ++e)
+        J[k][exact[e]] = flat[k * exact.size() + e];
+  }
+
   // Forward: (r(y + h e_j) - r(y)) / h;  central: (r(y + h e_j) - r(y - h e_j)) / 2h.
   std::vector<std::vector<double>> points;
-  for (std::size_t j = 0; j < y.size(); ++j)
+  for (std::size_t j : differenced)
     for (const double sign : central ? std::vector<double>{1.0, -1.0} : std::vector<double>{1.0})
     {
       points.push_back(y);
       points.back()[j] += sign * h;
     }
+  if (points.empty())
+    return J;
   const auto r = residuals_at(points);
   const std::size_t per_column = central ? 2 : 1;
-  Matrix J(r0.size(), std::vector<double>(y.size()));
-  for (std::size_t j = 0; j < y.size(); ++j)
+  for (std::size_t d = 0; d < differenced.size(); ++d)
   {
-    const auto& rp = r[per_column * j];
-    const auto& rm = central ? r[per_column * j + 1] : r0;
+    const auto& rp = r[per_column * d];
+    const auto& rm = central ? r[per_column * d + 1] : r0;
     for (std::size_t i = 0; i < r0.size(); ++i)
-      J[i][j] = (rp[i] - rm[i]) / (central ? 2 * h : h);
+      J[i][differenced[d]] = (rp[i] - rm[i]) / (central ? 2 * h : h);
   }
   return J;
 }

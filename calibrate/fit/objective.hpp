@@ -2,8 +2,9 @@
 #pragma once
 // The calibration objective in log-space coordinates y = ln(p):
 //   r(y) = weighted residuals (misfit.hpp),  chi2(y) = |r(y)|^2,
-// its finite-difference Jacobian J = dr/dy (forward differences of
-// warm-started solves) and gradient d chi2/dy = 2 J^T r. Counts evaluations,
+// its Jacobian J = dr/dy (exact sensitivities of the equilibrium for the
+// material parameters, forward differences of warm-started solves for the
+// shape R, H) and gradient d chi2/dy = 2 J^T r. Counts evaluations,
 // keeps the best point and reports progress after each evaluation.
 #include "case_groups.hpp"
 #include "fit_parameters.hpp"
@@ -47,9 +48,13 @@ public:
   /// Observables of each posture at the last evaluated point.
   const std::vector<Observables>& observables() const { return _obs; }
 
-  /// J = dr/dy by forward differences with step h in y = ln p (central if `central`).
+  /// J = dr/dy at y = ln p: exact for the material parameters,
+  ///   dr_i/dy_j = p_j dG_i/dp_j / sigma_i  (ForwardModel::sensitivities,
+  /// one linear solve per parameter and posture, no evaluation counted);
+  /// by forward differences with step h in y (central if `central`) for the
+  /// neutral shape R, H (the mesh moves), each column one evaluation.
   Matrix jacobian(const std::vector<double>& y, double h, bool central = false);
-  /// d chi2/dy = 2 J^T r with the forward-difference Jacobian.
+  /// d chi2/dy = 2 J^T r with jacobian(y, h).
   std::vector<double> gradient(const std::vector<double>& y, double h);
 
   int evaluations() const { return _evaluations; }

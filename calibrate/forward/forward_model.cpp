@@ -7,12 +7,16 @@
 #include "neutral_mesh.hpp"
 #include "posture_solve.hpp"
 #include "surface_export.hpp"
+#include "errors.hpp"
+#include "schema.hpp"
+#include <fmt/format.h>
 #include <algorithm>
 
 namespace breastsim::calibration
 {
 ForwardModel::ForwardModel(std::vector<Posture> postures, MPI_Comm comm, bool morph)
-    : _postures(std::move(postures)), _comm(comm), _morph(morph), _last(_postures.size())
+    : _postures(std::move(postures)), _comm(comm), _morph(morph), _last(_postures.size()),
+      _solved_at(_postures.size())
 {
 }
 
@@ -49,6 +53,8 @@ void ForwardModel::rebuild(const Config& c)
   attach_solver(c);
   for (auto& u : _last)
     u.clear(); // solutions on another mesh cannot start this one
+  for (auto& at : _solved_at)
+    at = nullptr;
   ++_meshes;
 }
 
@@ -86,6 +92,7 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
   if (r.converged_from_guess)
     ++_warm_starts;
   _last[i].assign(x.begin(), x.end());
+  _solved_at[i] = c.to_json();
   return r.observables;
 }
 
@@ -122,6 +129,91 @@ std::vector<Observables> ForwardModel::solve(const Config& c)
   for (std::size_t i = 0; i < _postures.size(); ++i)
     obs.push_back(solve_posture(i, c));
   return obs;
+}
+
+namespace
+{
+/// b = -dR/dp by the central difference of the assembled residual in the
+/// Constant `name` (relative step 1e-4), zero on the constrained rows.
+void minus_residual_derivative(Model& m, const std::string& name, Vec b, Vec r_plus, Vec r_minus,
+                               const std::vector<std::int8_t>& fixed)
+{
+  constexpr double e = 1e-4;
+  const std::vector<double> p0 = m.parameter(name);
+  const double p = p0.at(0), h = e * (p != 0 ? std::abs(p) : 1.0);
+  m.set_parameter(name, {p + h});
+  m.assemble_residual(r_plus);
+  m.set_parameter(name, {p - h});
+  m.assemble_residual(r_minus);
+  m.set_parameter(name, p0);
+  PETSC_CHECK(VecWAXPY(b, -1.0, r_minus, r_plus));
+  PETSC_CHECK(VecScale(b, -1.0 / (2 * h)));
+  PetscInt owned;
+  PETSC_CHECK(VecGetLocalSize(b, &owned));
+  PetscScalar* bv;
+  PETSC_CHECK(VecGetArray(b, &bv));
+  for (PetscInt k = 0; k < owned; ++k)
+    if (fixed[k])
+      bv[k] = 0; // du/dp = 0 where u is prescribed
+  PETSC_CHECK(VecRestoreArray(b, &bv));
+}
+} // namespace
+
+void ForwardModel::restore_equilibrium(std::size_t i, const Config& c)
+{
+  prepare(c);
+  if (_last[i].empty() || _solved_at[i] != c.to_json())
+    solve_posture(i, c);
+  Model& m = *_model;
+  if (m.mixed())
+    throw std::logic_error("sensitivities: the mixed formulation is not supported");
+  auto x = m.displacement()->x()->mutable_array();
+  std::copy(_last[i].begin(), _last[i].end(), x.begin());
+  m.displacement()->x()->scatter_fwd();
+  set_gravity(m, gravity_vector(_postures[i].theta_deg, CaseOptions::from(c).gravity));
+  m.set_parameter("load", {1.0});
+}
+
+std::vector<Observables> ForwardModel::sensitivities(std::size_t i, const Config& c,
+                                                     const std::vector<std::string>& keys)
+{
+  std::vector<std::string> names; // the UFL Constants of the keys
+  for (const auto& k : keys)
+  {
+    const KeyInfo& info = key_info(k);
+    if (info.ufl_name.empty() || info.type != KeyType::number || k == "geometry.R" || k == "geometry.H")
+      throw std::logic_error(fmt::format("sensitivities: '{}' is not a material parameter", k));
+    names.push_back(info.ufl_name);
+  }
+  restore_equilibrium(i, c);
+  Model& m = *_model;
+  // K at the converged state (identity rows and columns on the constrained
+  // dofs), factorised once for all keys.
+  _newton->assemble_tangent();
+  PetscVec r_plus(m.create_vector()), r_minus(m.create_vector()), b(m.create_vector()),
+      du(m.create_vector());
+  const std::vector<std::int8_t> fixed = m.constrained_markers();
+  std::vector<Observables> d;
+  for (const auto& name : names)
+  {
+    minus_residual_derivative(m, name, b.get(), r_plus.get(), r_minus.get(), fixed);
+    std::string msg;
+    if (!_newton->tangent_solve(b.get(), du.get(), msg))
+      throw SolveError(fmt::format("posture '{}': the sensitivity solve for {}: {}",
+                                   _postures[i].name, name, msg));
+    PETSC_CHECK(VecGhostUpdateBegin(du.get(), INSERT_VALUES, SCATTER_FORWARD));
+    PETSC_CHECK(VecGhostUpdateEnd(du.get(), INSERT_VALUES, SCATTER_FORWARD));
+    Vec local;
+    PETSC_CHECK(VecGhostGetLocalForm(du.get(), &local));
+    PetscInt n;
+    const PetscScalar* a;
+    PETSC_CHECK(VecGetLocalSize(local, &n));
+    PETSC_CHECK(VecGetArrayRead(local, &a));
+    d.push_back(_probe->derivative(m, std::span<const double>(a, static_cast<std::size_t>(n))));
+    PETSC_CHECK(VecRestoreArrayRead(local, &a));
+    PETSC_CHECK(VecGhostRestoreLocalForm(du.get(), &local));
+  }
+  return d;
 }
 
 std::vector<nlohmann::json> ForwardModel::surfaces(const Config& c)

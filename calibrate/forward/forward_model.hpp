@@ -11,10 +11,12 @@
 #include "config.hpp"
 #include "newton.hpp"
 #include "observables.hpp"
+#include "petsc.hpp"
 #include "posture.hpp"
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 namespace breastsim::calibration
@@ -35,6 +37,18 @@ public:
   /// (collective), then solve posture `i` alone (its own warm start).
   void prepare(const Config& c);
   Observables solve_posture(std::size_t i, const Config& c, const PostureVisitor& visit = {});
+  /// d observables / d p of posture `i` at the equilibrium of case `c`, one
+  /// Observables (of derivatives) per case key in `keys` (material keys
+  /// bound to a UFL Constant; not R, H). At equilibrium R(u, p) = 0, so
+  ///   K du/dp = -dR/dp   (K the tangent at the converged state),
+  /// with dR/dp the central difference of the assembled residual in p
+  /// (relative step 1e-4: exact for parameters entering linearly, O(1e-8)
+  /// otherwise) and du/dp = 0 on the Dirichlet dofs; the observables'
+  /// derivatives follow from du/dp (ObservableProbe::derivative). One
+  /// factorisation per call and one linear solve per key. Posture `i` is
+  /// solved first unless its last solve was at `c`. Collective.
+  std::vector<Observables> sensitivities(std::size_t i, const Config& c,
+                                         const std::vector<std::string>& keys);
   /// Solve case `c` and return the skin surface document (surface_export.hpp)
   /// of each posture, for pictures. Collective; complete on rank 0.
   std::vector<nlohmann::json> surfaces(const Config& c);
@@ -51,6 +65,9 @@ private:
   void morph(double R, double H);
   void attach_solver(const Config& c);
   Observables solve_one(std::size_t i, const Config& c);
+  /// Model at the equilibrium of posture i for case c (solved if its last
+  /// solution is not at c), gravity of the posture at full load.
+  void restore_equilibrium(std::size_t i, const Config& c);
 
   std::vector<Posture> _postures;
   MPI_Comm _comm;
@@ -66,6 +83,7 @@ private:
   std::unique_ptr<NewtonSolver> _newton;
   std::unique_ptr<ObservableProbe> _probe;
   std::vector<std::vector<T>> _last; ///< last solution of each posture (empty: none yet)
+  std::vector<nlohmann::json> _solved_at; ///< the case of each posture's last solution
   int _posture_solves = 0, _warm_starts = 0, _meshes = 0, _morphs = 0;
 };
 } // namespace breastsim::calibration

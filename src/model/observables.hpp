@@ -7,6 +7,7 @@
 #include "model.hpp"
 #include <array>
 #include <nlohmann/json.hpp>
+#include <span>
 
 namespace breastsim
 {
@@ -29,6 +30,14 @@ public:
   ObservableProbe(const Model& model, std::array<double, 3> nipple_reference);
   /// Measure the model's current state (collective).
   Observables measure(Model& model) const;
+  /// Directional derivative of the observables at the model's current state
+  /// along the displacement change `du` (local and ghost dofs, the layout of
+  /// displacement()->x()): d nipple = du at the apex node; projection, z_min,
+  /// z_max (an extreme over the skin nodes) the derivative at the extreme
+  /// node (exact where that node is unique); base perimeter the derivative
+  /// of the polyline length. Volume and energy are not differentiated (NaN).
+  /// Collective.
+  Observables derivative(const Model& model, std::span<const double> du) const;
   /// Reference node coordinates (local nodes, row-major) of the skin.
   const std::vector<std::int32_t>& skin_nodes() const { return _skin; }
 

@@ -198,7 +198,7 @@ double eisenstat_walker_forcing(double rnorm, double rnorm_prev, double eta_prev
   return std::clamp(eta, eta_min, eta_max);
 }
 
-int NewtonSolver::linear_solve(double rtol, std::string& msg, bool* indefinite)
+int NewtonSolver::linear_solve(Vec b, Vec x, double rtol, std::string& msg, bool* indefinite)
 {
   if (indefinite)
     *indefinite = false;
@@ -221,9 +221,9 @@ int NewtonSolver::linear_solve(double rtol, std::string& msg, bool* indefinite)
       PETSC_CHECK(KSPSetUp(ksp)); // the hierarchy, then its finest smoother
       configure_amg_levels();
     }
-    PETSC_CHECK(KSPSolve(ksp, _r.get(), _du.get()));
+    PETSC_CHECK(KSPSolve(ksp, b, x));
     PETSC_CHECK(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE));
-    _model.constrain_increment(_du.get());
+    _model.constrain_increment(x);
     KSPConvergedReason reason;
     PETSC_CHECK(KSPGetConvergedReason(ksp, &reason));
     PetscInt its;
@@ -249,6 +249,17 @@ int NewtonSolver::linear_solve(double rtol, std::string& msg, bool* indefinite)
     continue_from_du = reason == KSP_DIVERGED_ITS;
   }
   return -1;
+}
+
+void NewtonSolver::assemble_tangent()
+{
+  _model.assemble_jacobian(_A.get());
+  _stale = true;
+}
+
+bool NewtonSolver::tangent_solve(Vec b, Vec x, std::string& msg)
+{
+  return linear_solve(b, x, 1e-12, msg) >= 0;
 }
 
 double NewtonSolver::residual_norm()
@@ -316,7 +327,7 @@ NewtonSolver::Direction NewtonSolver::direction(double eta, std::string& msg)
   Direction d;
   auto solve_and_test = [&]()
   {
-    const int kits = linear_solve(eta, msg);
+    const int kits = linear_solve(_r.get(), _du.get(), eta, msg);
     d.solved = kits >= 0;
     d.descent = false;
     if (!d.solved)

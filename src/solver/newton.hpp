@@ -74,6 +74,14 @@ public:
   void invalidate_preconditioner() { _stale = true; }
   /// Number of preconditioner set-ups (factorisations / AMG hierarchies).
   int preconditioner_setups() const { return _setups; }
+  /// Assemble the tangent K at the model's current state for
+  /// tangent_solve() (a fresh preconditioner at its next solve); every Newton
+  /// iteration assembles K afresh, so this never disturbs a later solve.
+  void assemble_tangent();
+  /// Solve K x = b to relative tolerance 1e-12 with the Newton iterations'
+  /// linear solver (LU, or GMRES + AMG); constrained rows of x are zeroed.
+  /// Returns false (the reason in `msg`) when the solve fails.
+  bool tangent_solve(Vec b, Vec x, std::string& msg);
 
 private:
   /// The running quantities of one solve (newton.cpp).
@@ -101,9 +109,9 @@ private:
   /// After an AMG set-up: the cycle (amg_cycle) and the finest level's
   /// smoother (amg_fine_smoother).
   void configure_amg_levels();
-  /// Solve J du = -r (in _r) with preconditioner reuse; returns the Krylov
+  /// Solve J x = b with preconditioner reuse; returns the Krylov
   /// iterations, or -1 (message in `msg`) when even a fresh set-up fails.
-  int linear_solve(double rtol, std::string& msg, bool* indefinite = nullptr);
+  int linear_solve(Vec b, Vec x, double rtol, std::string& msg, bool* indefinite = nullptr);
   /// One Newton iteration from the state `s`: Jacobian, forcing term,
   /// direction, line search, acceptance. Fills `record`.
   Outcome iterate(Vec u, State& s, NewtonReport& rep, NewtonRecord& record);
