@@ -65,7 +65,59 @@ FitState make_state(const Config& c, const std::vector<Free>& frees,
   distance_statistics(s);
   return s;
 }
+
+/// `base` with each of `frees` set to exp(y_i), not validated (a
+/// differentiation step may pass a bound by a hair).
+Config config_near(const Config& base, const std::vector<Free>& frees, const std::vector<double>& y)
+{
+  Config c = base;
+  for (std::size_t i = 0; i < frees.size(); ++i)
+    frees[i].set(c, std::exp(y[i]));
+  return c;
+}
 } // namespace
+
+Matrix fit_jacobian(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,
+                    const std::vector<double>& y, const std::vector<double>& r, double fd_step,
+                    int& evaluations)
+{
+  constexpr double h = 1e-4;
+  const Config c = config_at(base, frees, y);
+  std::vector<ForwardModel::CaseDifference> directions;
+  std::vector<std::size_t> exact, differenced;
+  for (std::size_t j = 0; j < y.size(); ++j)
+  {
+    auto yp = y, ym = y;
+    yp[j] += h;
+    ym[j] -= h;
+    ForwardModel::CaseDifference d{config_near(base, frees, yp), config_near(base, frees, ym), 2 * h};
+    if (ForwardModel::same_mesh(c, d.plus) && ForwardModel::same_mesh(c, d.minus))
+    {
+      exact.push_back(j);
+      directions.push_back(std::move(d));
+    }
+    else
+      differenced.push_back(j);
+  }
+  Matrix J(r.size(), std::vector<double>(y.size(), 0.0));
+  if (!directions.empty()) // first, while the forward model is at y
+  {
+    const auto Je = ev.jacobian(c, directions);
+    for (std::size_t i = 0; i < r.size(); ++i)
+      for (std::size_t e = 0; e < exact.size(); ++e)
+        J[i][exact[e]] = Je[i][e];
+  }
+  for (std::size_t j : differenced) // J_ij = (r_i(y + h e_j) - r_i(y)) / h
+  {
+    auto yp = y;
+    yp[j] += fd_step;
+    const auto rp = ev(config_at(base, frees, yp)).r;
+    ++evaluations;
+    for (std::size_t i = 0; i < r.size(); ++i)
+      J[i][j] = (rp[i] - r[i]) / fd_step;
+  }
+  return J;
+}
 
 double normal_tail(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
 
@@ -119,7 +171,10 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
       p += fmt::format("{}{} = {:.4g}", i ? ", " : "", frees[i].name, std::exp(y[i]));
     log::info("{}: iteration {}, chi2 = {:.1f}, {}", label, it, chi2, p);
   };
-  const calibration::LsqResult r = calibration::levenberg_marquardt(f, y0, lo, hi, o, progress);
+  auto jacobian = [&](const std::vector<double>& y, const std::vector<double>& r, int& evaluations)
+  { return fit_jacobian(ev, base, frees, y, r, o.fd_step, evaluations); };
+  const calibration::LsqResult r =
+      calibration::levenberg_marquardt(f, y0, lo, hi, o, progress, jacobian);
   log::info("{}: {} ({} evaluations)", label, r.stop_reason, r.evaluations);
   const Config c = config_at(base, frees, r.y);
   const PointEvaluation e = ev(c);

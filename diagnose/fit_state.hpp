@@ -33,6 +33,15 @@ Config config_at(const Config& base, const std::vector<Free>& frees, const std::
 /// ln of each free parameter's start, clamped to its bounds.
 std::vector<double> start_values(const std::vector<Free>& frees);
 
+/// J = dr/dy of the fit of `frees` of `base` at y, r = ev(config_at(y)).r
+/// given: exact (PointEvaluator::jacobian, central residual differences of
+/// step 1e-4 in y) for every parameter whose neighbouring cases share the
+/// mesh, computed first (the forward model is then at y); forward
+/// differences of step `fd_step` for the others (the neutral shape R, H),
+/// each one evaluation added to `evaluations`. Throws SolveError.
+Matrix fit_jacobian(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,
+                    const std::vector<double>& y, const std::vector<double>& r, double fd_step,
+                    int& evaluations);
 /// Fit `frees` of `base` from y0; the state at the optimum (no frees: the
 /// state of `base`). Throws SolveError.
 FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,

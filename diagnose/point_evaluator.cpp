@@ -4,6 +4,7 @@
 #include "surface_export.hpp"
 #include "errors.hpp"
 #include "log.hpp"
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -117,6 +118,75 @@ PointEvaluation PointEvaluator::operator()(const Config& c)
   for (std::size_t k = 0; k < e.raw.size(); ++k)
     e.r.push_back(e.raw[k] / (_sigma.empty() ? _rec.noise_sigma : _sigma[k]));
   return e;
+}
+
+std::vector<double> PointEvaluator::posture_jacobian(
+    std::size_t i, const Config& c, const std::vector<ForwardModel::CaseDifference>& directions)
+{
+  const auto& posture = _rec.postures[i];
+  const std::size_t n = posture.points.size(), nd = directions.size();
+  std::vector<double> block((n + (posture.nipple ? 3 : 0)) * nd, 0.0);
+  if (_excluded[i])
+    return block;
+  int rank;
+  MPI_Comm_rank(_comm, &rank);
+  SkinSurface s;
+  std::vector<calibration::SurfaceMatch> matches;
+  auto column = [&](std::size_t j, const Model& model, std::span<const double> du,
+                    const Observables& d_obs)
+  {
+    if (j == 0) // the equilibrium's surface and matches, as in distances()
+    {
+      s = gather_skin_surface(model);
+      if (rank == 0)
+        matches = calibration::match_points(s, posture.points);
+    }
+    const SkinSurface moved = gather_skin_surface(model, du); // reference + du
+    std::vector<double> dd(n, 0.0);
+    if (rank == 0)
+    {
+      std::vector<calibration::Point> velocity(moved.deformed.size());
+      for (std::size_t v = 0; v < velocity.size(); ++v)
+        for (int k = 0; k < 3; ++k)
+          velocity[v][k] = moved.deformed[v][k] - moved.reference[v][k];
+      dd = calibration::distance_derivatives(s, posture.points, matches, velocity);
+    }
+    MPI_Bcast(dd.data(), static_cast<int>(n), MPI_DOUBLE, 0, _comm);
+    for (std::size_t k = 0; k < n; ++k)
+      block[k * nd + j] = dd[k];
+    if (posture.nipple) // raw = landmark - nipple
+      for (int k = 0; k < 3; ++k)
+        block[(n + k) * nd + j] = -d_obs.nipple[k];
+  };
+  _forward.sensitivities(i, c, directions, column);
+  return block;
+}
+
+std::vector<std::vector<double>> PointEvaluator::jacobian(
+    const Config& c, const std::vector<ForwardModel::CaseDifference>& directions)
+{
+  const std::size_t np = _rec.postures.size(), nd = directions.size();
+  const auto part = [&](std::size_t i) { return posture_jacobian(i, c, directions); };
+  std::vector<std::vector<double>> blocks;
+  if (_groups && _groups->groups() > 1)
+    blocks = _groups->map(np, part);
+  else
+    for (std::size_t i = 0; i < np; ++i)
+      blocks.push_back(part(i));
+  // Rows as in operator(): all distances first, then the landmarks.
+  std::vector<std::vector<double>> J, landmarks;
+  for (std::size_t i = 0; i < np; ++i)
+  {
+    const std::size_t n = _rec.postures[i].points.size(), rows = blocks[i].size() / std::max<std::size_t>(nd, 1);
+    for (std::size_t k = 0; k < rows; ++k)
+      (k < n ? J : landmarks)
+          .emplace_back(blocks[i].begin() + k * nd, blocks[i].begin() + (k + 1) * nd);
+  }
+  J.insert(J.end(), landmarks.begin(), landmarks.end());
+  for (std::size_t k = 0; k < J.size(); ++k)
+    for (double& x : J[k])
+      x /= _sigma.empty() ? _rec.noise_sigma : _sigma[k];
+  return J;
 }
 
 PointEvaluation PointEvaluator::try_each(const Config& c)

@@ -54,6 +54,16 @@ public:
   /// Solve posture `i` again in later evaluations (undoes exclude).
   void include(std::size_t i) { _excluded.at(i) = false; }
 
+  /// Collective. dr/dy at case `c`, one column per direction (each a
+  /// parameter y's cases at y +- h: ForwardModel::CaseDifference), in the
+  /// rows of r: each posture's distance derivatives
+  /// (calibration::distance_derivatives of du/dy's surface motion), then the
+  /// landmarks' (-d nipple/dy), over sigma; an excluded posture's rows are 0.
+  /// A posture whose last solve was not at `c` is solved again first.
+  /// Throws SolveError.
+  std::vector<std::vector<double>> jacobian(const Config& c,
+                                            const std::vector<ForwardModel::CaseDifference>& directions);
+
   /// Posture solves of the evaluations so far, over all groups.
   int posture_solves() const { return _posture_solves; }
   /// Skin surface documents of case `c` per posture (collective; rank 0).
@@ -67,6 +77,10 @@ private:
   /// distances, then its landmark; all NaN when it is excluded or (with
   /// _tolerant) its solve fails. Throws SolveError.
   std::vector<double> posture_part(std::size_t i, const Config& c);
+  /// Posture i's rows of jacobian() before the division by sigma
+  /// (row-major, one column per direction; distances, then the landmark).
+  std::vector<double> posture_jacobian(std::size_t i, const Config& c,
+                                       const std::vector<ForwardModel::CaseDifference>& directions);
   /// Every posture's part, each solved by its group (CaseGroups::map).
   std::vector<std::vector<double>> parts(const Config& c);
 

@@ -90,11 +90,11 @@ double gauss_newton_decrease(const Matrix& A, const std::vector<double>& g, cons
 /// o.ftol_rel): res.J becomes the Jacobian at res.y, and the fit has
 /// converged if the Gauss-Newton model there predicts at most o.chi2_tol
 /// further decrease (res.stop_reason says so).
-bool converged_after_short_step(const ResidualFunction& f, const std::vector<double>& lo,
+bool converged_after_short_step(const JacobianFunction& jacobian, const std::vector<double>& lo,
                                 const std::vector<double>& hi, const LsqOptions& o,
                                 double max_step, LsqResult& res)
 {
-  res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);
+  res.J = jacobian(res.y, res.r, res.evaluations);
   Matrix A;
   std::vector<double> g;
   normal_equations(res.J, res.r, res.y.size(), A, g);
@@ -189,8 +189,13 @@ Matrix fd_jacobian(const ResidualFunction& f, const std::vector<double>& y,
 LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
                               const std::vector<double>& lo, const std::vector<double>& hi,
                               const LsqOptions& o,
-                              const std::function<void(int, double, const std::vector<double>&)>& progress)
+                              const std::function<void(int, double, const std::vector<double>&)>& progress,
+                              const JacobianFunction& exact)
 {
+  const JacobianFunction jacobian =
+      exact ? exact
+            : JacobianFunction([&](const std::vector<double>& y, const std::vector<double>& r, int& evaluations)
+                               { return fd_jacobian(f, y, r, o.fd_step, evaluations, o.groups); });
   const std::size_t n = y0.size();
   LsqResult res;
   for (std::size_t j = 0; j < n; ++j)
@@ -206,7 +211,7 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
   {
     if (!have_J)
     {
-      res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);
+      res.J = jacobian(res.y, res.r, res.evaluations);
       have_J = true;
     }
     Matrix A;
@@ -225,12 +230,12 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
     if (max_step >= o.xtol && decrease >= o.ftol_rel)
       continue;
     have_J = true;
-    if (converged_after_short_step(f, lo, hi, o, max_step, res))
+    if (converged_after_short_step(jacobian, lo, hi, o, max_step, res))
       break;
     lambda = std::min(lambda, 1e-3); // the damping, not the optimum, made the step short
   }
   if (!have_J) // Jacobian at the final point (uncertainty, score tests)
-    res.J = fd_jacobian(f, res.y, res.r, o.fd_step, res.evaluations, o.groups);
+    res.J = jacobian(res.y, res.r, res.evaluations);
   return res;
 }
 

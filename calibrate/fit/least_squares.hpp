@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // Bounded Levenberg-Marquardt for weighted least squares, min |r(y)|^2, with
-// a forward-difference Jacobian J = dr/dy (each column one evaluation of r):
+// the caller's Jacobian J = dr/dy (e.g. exact sensitivities) or forward
+// differences (each column one evaluation of r):
 //   (J^T J + lambda diag(J^T J)) dy = -J^T r,   y <- clamp(y + dy, lo, hi),
 // lambda / 3 after a successful step, x 4 after a rejected one (Marquardt).
 // Used by the diagnosis, where each r(y) is a set of warm-started posture
@@ -16,6 +17,9 @@
 namespace breastsim::calibration
 {
 using ResidualFunction = std::function<std::vector<double>(const std::vector<double>& y)>;
+/// J = dr/dy at y, where r = f(y) is given; adds the evaluations of r it makes.
+using JacobianFunction = std::function<Matrix(const std::vector<double>& y,
+                                              const std::vector<double>& r, int& evaluations)>;
 
 struct LsqOptions
 {
@@ -50,11 +54,14 @@ Matrix fd_jacobian(const ResidualFunction& f, const std::vector<double>& y,
                    const CaseGroups* groups = nullptr);
 
 /// Minimise |f(y)|^2 over lo <= y <= hi from y0. `progress(iteration, chi2, y)`
-/// is called after every accepted step.
+/// is called after every accepted step. The Jacobian is `jacobian`'s, or
+/// fd_jacobian's (step o.fd_step) when it is empty; it is always requested
+/// at the last point f was evaluated at.
 LsqResult levenberg_marquardt(
     const ResidualFunction& f, std::vector<double> y0, const std::vector<double>& lo,
     const std::vector<double>& hi, const LsqOptions& o,
-    const std::function<void(int, double, const std::vector<double>&)>& progress = {});
+    const std::function<void(int, double, const std::vector<double>&)>& progress = {},
+    const JacobianFunction& jacobian = {});
 
 /// The normal equations of J (rows: residuals, n columns) and r:
 /// A = J^T J, g = J^T r.

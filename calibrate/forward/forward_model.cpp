@@ -133,31 +133,37 @@ std::vector<Observables> ForwardModel::solve(const Config& c)
 
 namespace
 {
-/// b = -dR/dp by the central difference of the assembled residual in the
-/// Constant `name` (relative step 1e-4), zero on the constrained rows.
-void minus_residual_derivative(Model& m, const std::string& name, Vec b, Vec r_plus, Vec r_minus,
-                               const std::vector<std::int8_t>& fixed)
+/// b = -(R(plus) - R(minus)) / width, zero on the constrained rows; the
+/// model's parameters are those of `c` again afterwards.
+void minus_residual_difference(Model& m, const ForwardModel::CaseDifference& d, const Config& c,
+                               Vec b, Vec r_minus, const std::vector<std::int8_t>& fixed)
 {
-  constexpr double e = 1e-4;
-  const std::vector<double> p0 = m.parameter(name);
-  const double p = p0.at(0), h = e * (p != 0 ? std::abs(p) : 1.0);
-  m.set_parameter(name, {p + h});
-  m.assemble_residual(r_plus);
-  m.set_parameter(name, {p - h});
+  apply_parameters(d.plus, m);
+  m.assemble_residual(b);
+  apply_parameters(d.minus, m);
   m.assemble_residual(r_minus);
-  m.set_parameter(name, p0);
-  PETSC_CHECK(VecWAXPY(b, -1.0, r_minus, r_plus));
-  PETSC_CHECK(VecScale(b, -1.0 / (2 * h)));
+  apply_parameters(c, m);
+  PETSC_CHECK(VecAXPY(b, -1.0, r_minus));
+  PETSC_CHECK(VecScale(b, -1.0 / d.width));
   PetscInt owned;
   PETSC_CHECK(VecGetLocalSize(b, &owned));
   PetscScalar* bv;
   PETSC_CHECK(VecGetArray(b, &bv));
   for (PetscInt k = 0; k < owned; ++k)
     if (fixed[k])
-      bv[k] = 0; // du/dp = 0 where u is prescribed
+      bv[k] = 0; // du/dy = 0 where u is prescribed
   PETSC_CHECK(VecRestoreArray(b, &bv));
 }
 } // namespace
+
+bool ForwardModel::same_mesh(const Config& a, const Config& b)
+{
+  const CaseOptions x = CaseOptions::from(a), y = CaseOptions::from(b);
+  return x.geometry.R == y.geometry.R && x.geometry.H == y.geometry.H
+         && x.geometry.mesh_size == y.geometry.mesh_size && x.geometry.order == y.geometry.order
+         && x.geometry.refinements == y.geometry.refinements && x.fixed_base == y.fixed_base
+         && x.formulation == y.formulation;
+}
 
 void ForwardModel::restore_equilibrium(std::size_t i, const Config& c)
 {
@@ -174,33 +180,27 @@ void ForwardModel::restore_equilibrium(std::size_t i, const Config& c)
   m.set_parameter("load", {1.0});
 }
 
-std::vector<Observables> ForwardModel::sensitivities(std::size_t i, const Config& c,
-                                                     const std::vector<std::string>& keys)
+void ForwardModel::sensitivities(std::size_t i, const Config& c,
+                                 const std::vector<CaseDifference>& directions,
+                                 const SensitivityVisitor& visit)
 {
-  std::vector<std::string> names; // the UFL Constants of the keys
-  for (const auto& k : keys)
-  {
-    const KeyInfo& info = key_info(k);
-    if (info.ufl_name.empty() || info.type != KeyType::number || k == "geometry.R" || k == "geometry.H")
-      throw std::logic_error(fmt::format("sensitivities: '{}' is not a material parameter", k));
-    names.push_back(info.ufl_name);
-  }
+  for (const auto& d : directions)
+    if (!same_mesh(c, d.plus) || !same_mesh(c, d.minus) || !(d.width > 0))
+      throw std::logic_error("sensitivities: a direction changes the mesh");
   restore_equilibrium(i, c);
   Model& m = *_model;
   // K at the converged state (identity rows and columns on the constrained
-  // dofs), factorised once for all keys.
+  // dofs), factorised once for all directions.
   _newton->assemble_tangent();
-  PetscVec r_plus(m.create_vector()), r_minus(m.create_vector()), b(m.create_vector()),
-      du(m.create_vector());
+  PetscVec r_minus(m.create_vector()), b(m.create_vector()), du(m.create_vector());
   const std::vector<std::int8_t> fixed = m.constrained_markers();
-  std::vector<Observables> d;
-  for (const auto& name : names)
+  for (std::size_t j = 0; j < directions.size(); ++j)
   {
-    minus_residual_derivative(m, name, b.get(), r_plus.get(), r_minus.get(), fixed);
+    minus_residual_difference(m, directions[j], c, b.get(), r_minus.get(), fixed);
     std::string msg;
     if (!_newton->tangent_solve(b.get(), du.get(), msg))
-      throw SolveError(fmt::format("posture '{}': the sensitivity solve for {}: {}",
-                                   _postures[i].name, name, msg));
+      throw SolveError(fmt::format("posture '{}': the sensitivity solve of direction {}: {}",
+                                   _postures[i].name, j + 1, msg));
     PETSC_CHECK(VecGhostUpdateBegin(du.get(), INSERT_VALUES, SCATTER_FORWARD));
     PETSC_CHECK(VecGhostUpdateEnd(du.get(), INSERT_VALUES, SCATTER_FORWARD));
     Vec local;
@@ -209,11 +209,34 @@ std::vector<Observables> ForwardModel::sensitivities(std::size_t i, const Config
     const PetscScalar* a;
     PETSC_CHECK(VecGetLocalSize(local, &n));
     PETSC_CHECK(VecGetArrayRead(local, &a));
-    d.push_back(_probe->derivative(m, std::span<const double>(a, static_cast<std::size_t>(n))));
+    const std::span<const double> dv(a, static_cast<std::size_t>(n));
+    visit(j, m, dv, _probe->derivative(m, dv));
     PETSC_CHECK(VecRestoreArrayRead(local, &a));
     PETSC_CHECK(VecGhostRestoreLocalForm(du.get(), &local));
   }
-  return d;
+}
+
+std::vector<Observables> ForwardModel::sensitivities(std::size_t i, const Config& c,
+                                                     const std::vector<std::string>& keys)
+{
+  constexpr double e = 1e-4; // relative step
+  std::vector<CaseDifference> directions;
+  for (const auto& k : keys)
+  {
+    const KeyInfo& info = key_info(k);
+    if (info.ufl_name.empty() || info.type != KeyType::number || k == "geometry.R" || k == "geometry.H")
+      throw std::logic_error(fmt::format("sensitivities: '{}' is not a material parameter", k));
+    const double p = c.number(k), h = e * (p != 0 ? std::abs(p) : 1.0);
+    CaseDifference d{c, c, 2 * h};
+    d.plus.set(k, p + h);
+    d.minus.set(k, p - h);
+    directions.push_back(std::move(d));
+  }
+  std::vector<Observables> out(keys.size());
+  sensitivities(i, c, directions,
+                [&](std::size_t j, const Model&, std::span<const double>, const Observables& d)
+                { out[j] = d; });
+  return out;
 }
 
 std::vector<nlohmann::json> ForwardModel::surfaces(const Config& c)

@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,16 +38,36 @@ public:
   /// (collective), then solve posture `i` alone (its own warm start).
   void prepare(const Config& c);
   Observables solve_posture(std::size_t i, const Config& c, const PostureVisitor& visit = {});
-  /// d observables / d p of posture `i` at the equilibrium of case `c`, one
-  /// Observables (of derivatives) per case key in `keys` (material keys
-  /// bound to a UFL Constant; not R, H). At equilibrium R(u, p) = 0, so
-  ///   K du/dp = -dR/dp   (K the tangent at the converged state),
-  /// with dR/dp the central difference of the assembled residual in p
-  /// (relative step 1e-4: exact for parameters entering linearly, O(1e-8)
-  /// otherwise) and du/dp = 0 on the Dirichlet dofs; the observables'
-  /// derivatives follow from du/dp (ObservableProbe::derivative). One
-  /// factorisation per call and one linear solve per key. Posture `i` is
-  /// solved first unless its last solve was at `c`. Collective.
+  /// A direction of differentiation of one parameter y: the cases at
+  /// y + h and y - h, which differ from the case only in runtime parameters
+  /// (same_mesh), and their distance 2h:  dR/dy = (R(plus) - R(minus)) / width.
+  struct CaseDifference
+  {
+    Config plus, minus;
+    double width = 0;
+  };
+  /// Called with each direction's index, the model at the equilibrium, du/dy
+  /// (local and ghost dofs, the layout of displacement()->x()) and the
+  /// observables' derivatives along it (ObservableProbe::derivative).
+  using SensitivityVisitor = std::function<void(std::size_t direction, const Model& model,
+                                                std::span<const double> du,
+                                                const Observables& d_observables)>;
+  /// Whether cases `a` and `b` are solved on the same mesh (no rebuild and
+  /// no morph between them): the condition for a CaseDifference.
+  static bool same_mesh(const Config& a, const Config& b);
+  /// Sensitivities of posture `i` at the equilibrium of case `c`: at
+  /// equilibrium R(u, y) = 0, so
+  ///   K du/dy = -dR/dy   (K the tangent at the converged state),
+  /// dR/dy from each direction's residual difference, du/dy = 0 on the
+  /// Dirichlet dofs. One factorisation per call, one linear solve per
+  /// direction. Posture `i` is solved first unless its last solve was at
+  /// `c`. Collective; throws SolveError.
+  void sensitivities(std::size_t i, const Config& c, const std::vector<CaseDifference>& directions,
+                     const SensitivityVisitor& visit);
+  /// d observables / d p of posture `i` at case `c`, one Observables (of
+  /// derivatives) per material key in `keys` (bound to a UFL Constant; not
+  /// R, H), by central residual differences of relative step 1e-4 (exact for
+  /// parameters entering linearly, O(1e-8) otherwise). Collective.
   std::vector<Observables> sensitivities(std::size_t i, const Config& c,
                                          const std::vector<std::string>& keys);
   /// Solve case `c` and return the skin surface document (surface_export.hpp)

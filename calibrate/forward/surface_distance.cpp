@@ -94,3 +94,31 @@ std::vector<SurfaceMatch> match_points(const SkinSurface& s, const std::vector<P
   return out;
 }
 } // namespace breastsim::calibration
+
+namespace breastsim::calibration
+{
+std::vector<double> distance_derivatives(const SkinSurface& s, const std::vector<Point>& points,
+                                         const std::vector<SurfaceMatch>& matches,
+                                         const std::vector<Point>& velocity)
+{
+  std::vector<double> out(points.size(), 0.0);
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const auto& tri = s.triangles[matches[i].triangle];
+    const Point &a = s.deformed[tri[0]], &b = s.deformed[tri[1]], &c = s.deformed[tri[2]];
+    const Point &da = velocity[tri[0]], &db = velocity[tri[1]], &dc = velocity[tri[2]];
+    const Point m = cross(sub(b, a), sub(c, a));
+    const double len = std::sqrt(dot(m, m));
+    const Point n = {m[0] / len, m[1] / len, m[2] / len};
+    // dm = (db - da) x (c - a) + (b - a) x (dc - da);  dn = (I - n n^T) dm / |m|
+    const Point dm1 = cross(sub(db, da), sub(c, a)), dm2 = cross(sub(b, a), sub(dc, da));
+    const Point dm = {dm1[0] + dm2[0], dm1[1] + dm2[1], dm1[2] + dm2[2]};
+    const double ndm = dot(n, dm);
+    const Point dn = {(dm[0] - ndm * n[0]) / len, (dm[1] - ndm * n[1]) / len,
+                      (dm[2] - ndm * n[2]) / len};
+    // d = (p - a) . n  =>  dd = -da . n + (p - a) . dn
+    out[i] = -dot(da, n) + dot(sub(points[i], a), dn);
+  }
+  return out;
+}
+} // namespace breastsim::calibration

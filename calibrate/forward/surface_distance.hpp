@@ -30,4 +30,14 @@ Point closest_point_on_triangle(const Point& p, const Point& a, const Point& b, 
 /// triangles with a bounding-sphere cut: fine for the ~1e3 triangles of a
 /// diagnosis mesh).
 std::vector<SurfaceMatch> match_points(const SkinSurface& s, const std::vector<Point>& points);
+
+/// Derivatives of the distances of `matches` (match_points(s, points)) when
+/// the vertices of s move with `velocity` (one per vertex), each point
+/// keeping its triangle: with q in the plane of its triangle (a, b, c),
+///   d = (p - a) . n,  n = m / |m|,  m = (b - a) x (c - a),
+///   dd = -da . n + (p - a) . (I - n n^T) dm / |m|,
+///   dm = (db - da) x (c - a) + (b - a) x (dc - da).
+std::vector<double> distance_derivatives(const SkinSurface& s, const std::vector<Point>& points,
+                                         const std::vector<SurfaceMatch>& matches,
+                                         const std::vector<Point>& velocity);
 } // namespace breastsim::calibration

@@ -83,7 +83,8 @@ std::int32_t edge_dof(std::span<const std::int32_t> dofs, const dolfinx::fem::El
   throw std::logic_error("edge_dof: not an edge of the tetrahedron");
 }
 
-/// Local skin triangles of owned cells as (X, x) of the three corners:
+/// Local skin triangles of owned cells as (X, X + u) of the three corners
+/// (u: local and ghost displacement dofs):
 /// 18 doubles each, ordered so that the normal points out of the body. A P1
 /// facet is one triangle; a P2 facet (six nodes, curved) is its quadratic
 /// map sampled on the lattice of `kP2Subdivision`^2 flat sub-triangles, so
@@ -92,7 +93,7 @@ std::int32_t edge_dof(std::span<const std::int32_t> dofs, const dolfinx::fem::El
 /// inside a skin of radius 70 mm; the 4 x 4 lattice's up to 0.016 mm).
 constexpr int kP2Subdivision = 4;
 
-std::vector<double> local_triangles(const Model& model)
+std::vector<double> local_triangles(const Model& model, std::span<const double> u)
 {
   auto mesh = model.mesh().mesh;
   const auto& tags = *model.mesh().facets;
@@ -109,7 +110,6 @@ std::vector<double> local_triangles(const Model& model)
   const int n = quadratic ? kP2Subdivision : 1;
   const auto sub = lattice_triangles(n);
   const auto X = V->tabulate_dof_coordinates(false);
-  auto u = model.displacement()->x()->array();
   if (u.size() != X.size())
     throw std::logic_error("local_triangles: displacement and dof coordinates differ in size");
   std::vector<double> x(X.size());
@@ -206,8 +206,13 @@ bool is_half_model(const Model& model)
 
 SkinSurface gather_skin_surface(const Model& model)
 {
+  return gather_skin_surface(model, model.displacement()->x()->array());
+}
+
+SkinSurface gather_skin_surface(const Model& model, std::span<const double> u)
+{
   MPI_Comm comm = model.mesh().mesh->comm();
-  const auto all = gather_to_root(local_triangles(model), comm);
+  const auto all = gather_to_root(local_triangles(model, u), comm);
   SkinSurface s;
   s.half_model = is_half_model(model);
   // Merge corners shared by several triangles (and ranks) by reference

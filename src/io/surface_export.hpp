@@ -10,6 +10,7 @@
 #include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,11 @@ bool is_half_model(const Model& model);
 /// Collective. The skin surface of the current state of `model`; complete on
 /// rank 0, empty on the other ranks.
 SkinSurface gather_skin_surface(const Model& model);
+/// Collective. As above with the displacement `u` (local and ghost dofs, the
+/// layout of displacement()->x()) in place of the model's: the same
+/// vertices and triangles, deformed = reference + u (sampled like the
+/// displacement, so a P2 surface's deformed - reference is linear in u).
+SkinSurface gather_skin_surface(const Model& model, std::span<const double> u);
 
 /// The surface document (`surface_<posture>.json`): posture, theta_deg,
 /// units, mirror_x (true: a half model, draw it with its mirror image x -> -x;
