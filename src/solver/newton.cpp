@@ -359,10 +359,7 @@ NewtonSolver::Direction NewtonSolver::direction(double eta, std::string& msg)
   return d;
 }
 
-// Backtracking: accept the first step with det F > 0 everywhere and either
-// an Armijo energy decrease, or (energy change at round-off level) a smaller
-// residual.
-double NewtonSolver::line_search(Vec u, double slope, State& s)
+double NewtonSolver::backtrack(Vec u, const std::function<bool(double)>& accept)
 {
   PETSC_CHECK(VecCopy(u, _u0.get()));
   double step = 2.0;
@@ -371,26 +368,30 @@ double NewtonSolver::line_search(Vec u, double slope, State& s)
     step *= 0.5;
     PETSC_CHECK(VecWAXPY(u, step, _du.get(), _u0.get()));
     _model.set_displacement(u);
-    if (!(_model.min_detF() > 0))
-      continue;
-    const double e = _model.energy();
-    if (!std::isfinite(e))
-      continue;
-    const double tiny = 1e-12 * std::max(std::abs(s.energy), std::abs(e));
-    bool accepted = false;
-    if (e <= s.energy + 1e-4 * step * slope) // Armijo
-      accepted = true;
-    else if (std::abs(e - s.energy) <= tiny)
-      accepted = residual_norm() < s.rnorm;
-    if (accepted)
-    {
-      s.energy = e;
+    if (_model.min_detF() > 0 && accept(step))
       return step;
-    }
   }
   PETSC_CHECK(VecCopy(_u0.get(), u));
   _model.set_displacement(u);
   return 0;
+}
+
+// Accept an Armijo energy decrease, or (energy change at round-off level) a
+// smaller residual.
+double NewtonSolver::line_search(Vec u, double slope, State& s)
+{
+  return backtrack(u, [&](double step)
+  {
+    const double e = _model.energy();
+    if (!std::isfinite(e))
+      return false;
+    const double tiny = 1e-12 * std::max(std::abs(s.energy), std::abs(e));
+    const bool accepted = e <= s.energy + 1e-4 * step * slope // Armijo
+                          || (std::abs(e - s.energy) <= tiny && residual_norm() < s.rnorm);
+    if (accepted)
+      s.energy = e;
+    return accepted;
+  });
 }
 
 NewtonSolver::Outcome NewtonSolver::iterate(Vec u, State& s, NewtonReport& rep, NewtonRecord& record)

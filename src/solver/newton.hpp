@@ -10,6 +10,7 @@
 #include "model.hpp"
 #include "petsc.hpp"
 #include "solver_options.hpp"
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -122,8 +123,11 @@ private:
   Direction direction(double eta, std::string& msg);
   /// A_ii += sigma |A_ii|.
   void shift_diagonal(double sigma);
-  /// Backtracking from u along _du: the accepted step (energy updated in
-  /// `s`), or 0 with u restored.
+  /// Backtracking from u along _du: the first step a = 1, 1/2, ... (at most
+  /// max_backtracks halvings) at which det F > 0 everywhere and
+  /// `accept(a)` holds (the model then at u + a du), or 0 with u restored.
+  double backtrack(Vec u, const std::function<bool(double step)>& accept);
+  /// backtrack() with an Armijo energy decrease (energy updated in `s`).
   double line_search(Vec u, double slope, State& s);
   /// The same for a saddle point (the mixed formulation, whose Lagrangian
   /// has no minimum): backtracking on |r| from |r(u)| = rnorm
