@@ -6,6 +6,7 @@
 #include "errors.hpp"
 #include "log.hpp"
 #include "neutral_state.hpp"
+#include "output_options.hpp"
 #include "overrides.hpp"
 #include <fmt/format.h>
 #include <iostream>
@@ -53,8 +54,15 @@ Command add_neutral_state_command(CLI::App& root)
                                           {o->case_file});
             const NeutralStateResult r = neutral_state(c, p, o->inverse, out, MPI_COMM_WORLD);
             if (log::is_root())
+            {
+              const OutputOptions output = OutputOptions::from(c);
+              std::string files = "reference.msh, case.reference.toml, summary.json";
+              for (const auto& [on, ext] : {std::pair{output.xdmf, ".xdmf"}, std::pair{output.vtk, ".pvd"}})
+                if (on)
+                  files += ", neutral_" + p.name + ext;
               std::cout << neutral_state_table(r) << "results written to " << out.path().string()
-                        << "/ (reference.msh, case.reference.toml, summary.json)\n";
+                        << "/ (" << files << ")\n";
+            }
             return 0;
           }};
 }

@@ -102,7 +102,7 @@ Command add_scan_model_command(CLI::App& root)
             const ScanModelResult res = scan_model(r, out, MPI_COMM_WORLD);
             if (log::is_root())
               std::cout << scan_model_table(res) << "results written to " << out.path().string()
-                        << "/ (scan.msh, case.toml, frame.json, summary.json)\n";
+                        << "/ (scan.msh, scan.xdmf, case.toml, frame.json, summary.json)\n";
             return 0;
           }};
 }

@@ -309,4 +309,20 @@ void write_fields(Model& model, const fs::path& stem, bool xdmf, bool vtk)
     throw std::runtime_error(write_failure(file, errno, e.what())); // errno of HDF5's failed write
   }
 }
+
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const fs::path& file)
+{
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // one message instead of HDF5's error stack
+  try
+  {
+    dolfinx::io::XDMFFile f(m.mesh->comm(), file.string(), "w");
+    f.write_mesh(*m.mesh);
+    m.mesh->topology_mutable().create_connectivity(2, 3);
+    f.write_meshtags(*m.facets, "/Xdmf/Domain/Grid[@Name='" + m.mesh->name + "']/Geometry");
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error(write_failure(file, errno, e.what()));
+  }
+}
 } // namespace breastsim

@@ -54,4 +54,7 @@ void write_owned_json(const std::filesystem::path& file, nlohmann::json j, MPI_C
 void refresh_marker(const std::filesystem::path& dir, MPI_Comm comm);
 /// Write the displacement of `model` on its mesh (XDMF; and VTK if `vtk`).
 void write_fields(Model& model, const std::filesystem::path& stem, bool xdmf, bool vtk);
+/// Collective. Write the mesh of `m` and its facet tags (base, skin, ...)
+/// as XDMF to `file` (ParaView), with its HDF5 file beside it.
+void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
 } // namespace breastsim

@@ -7,6 +7,7 @@
 #include "model_setup.hpp"
 #include "msh_writer.hpp"
 #include "output.hpp"
+#include "output_options.hpp"
 #include "solver_options.hpp"
 #include "user_mesh.hpp"
 #include <dolfinx/common/IndexMap.h>
@@ -141,6 +142,12 @@ NeutralStateResult neutral_state(const Config& c, const Posture& posture, const 
   MPI_Bcast(&r.max_node_shift, 1, MPI_DOUBLE, 0, comm);
   write_text(dir.path() / "case.reference.toml", reference_case(c, r.nipple).to_toml(), comm);
   write_json(dir.path() / "summary.json", to_json(r), comm);
+  // For ParaView: the reference (shifted like reference.msh) and the
+  // displacement that carries it into the recorded shape.
+  for (std::size_t n = 0; n < model.mesh().mesh->geometry().x().size(); n += 3)
+    model.mesh().mesh->geometry().x()[n] += r.shift_x;
+  const OutputOptions output = OutputOptions::from(c);
+  write_fields(model, dir.path() / ("neutral_" + posture.name), output.xdmf, output.vtk);
   dir.commit();
   return r;
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "scan_model_job.hpp"
 #include "breastsim_registry.hpp"
+#include "mesh_from_gmsh.hpp"
 #include "msh_writer.hpp"
 #include "on_root.hpp"
 #include "output.hpp"
@@ -90,6 +91,9 @@ ScanModelResult scan_model(const ScanModelRequest& r, const OutputTarget& out, M
     meshes::write_msh22(res.model.mesh.mesh, names, dir.path() / "scan.msh");
   }
   write_text(dir.path() / "case.toml", toml, comm);
+  int order = res.model.mesh.mesh.order; // known on rank 0
+  MPI_Bcast(&order, 1, MPI_INT, 0, comm);
+  write_mesh_xdmf(to_dolfinx(comm, res.model.mesh.mesh, order), dir.path() / "scan.xdmf");
   write_json(dir.path() / "frame.json", frame_json(res.model.frame, r.options.units), comm);
   write_json(dir.path() / "summary.json", summary_json(res.model, res.cells, r.posture), comm);
   dir.commit();

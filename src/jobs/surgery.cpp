@@ -15,7 +15,6 @@
 #include "viewer.hpp"
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/utils.h>
-#include <dolfinx/io/XDMFFile.h>
 #include <fmt/format.h>
 #include <cmath>
 #include <limits>
@@ -31,14 +30,6 @@ std::array<int, 5> suture_tags()
           generated::tag("suture_abd"), generated::tag("suture_bcd")};
 }
 } // namespace
-
-void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file)
-{
-  dolfinx::io::XDMFFile f(m.mesh->comm(), file.string(), "w");
-  f.write_mesh(*m.mesh);
-  m.mesh->topology_mutable().create_connectivity(2, 3);
-  f.write_meshtags(*m.facets, "/Xdmf/Domain/Grid[@Name='" + m.mesh->name + "']/Geometry");
-}
 
 double max_suture_gap(const Model& m)
 {

@@ -35,8 +35,6 @@ struct SurgeryResult
   double seconds_mesh = 0, seconds_pre = 0, seconds_post = 0;
 };
 
-/// Write a mesh and its facet tags (no field) as XDMF (collective).
-void write_mesh_xdmf(const TaggedDolfinxMesh& m, const std::filesystem::path& file);
 
 /// Where a deformation is closest to folding: the smallest det F at any
 /// inversion check point (forms/geometry_forms.py: P1 vertices, P2 the

@@ -109,6 +109,10 @@ trip() { # NAME SCAN TRUTH [SCAN-MODEL OPTIONS...]
   set -- "$name" "$scan" "$truth" "$@"
   "$BIN" -q scan-model "$2" --units mm --posture standing --mesh-size 0.01 "${@:4}" --out "$1_model" >"$1_model.log"
   "$BIN" -q neutral-state "$1_model/case.toml" --posture standing --out "$1_neutral" >"$1_neutral.log"
+  for f in "$1_model/scan.xdmf" "$1_model/scan.h5" "$1_neutral/neutral_standing.xdmf"; do
+    [ -s "$f" ] || { echo "FAIL: $f missing (ParaView files)"; exit 1; }
+  done
+  grep -q 'Name="mesh_tags"' "$1_model/scan.xdmf" || { echo "FAIL: scan.xdmf has no facet tags"; exit 1; }
   "$BIN" -q simulate "$1_neutral/case.reference.toml" --set postures.names=standing --set output.xdmf=false \
     --out "$1_forward" >"$1_forward.log"
   $PY "$SRC/bench/scan_compare.py" "$3" "$1_model" "$1_neutral" "$1_forward" | tee "$1.json"
