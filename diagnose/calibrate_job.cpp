@@ -6,6 +6,7 @@
 #include "log.hpp"
 #include "optimizer.hpp"
 #include "output.hpp"
+#include "output_options.hpp"
 
 namespace breastsim::diagnosis
 {
@@ -47,12 +48,13 @@ std::string fit_measurements(const CalibrateJob& job, const OutputTarget& out,
   log::info("calibrating [{}] with {} against {} measurements in {} postures", r.fit, r.algorithm,
             job.data.measurements.items.size(), job.data.measurements.postures.size());
   const auto res = calibration::calibrate(job.start, job.data.measurements, job.fit, co, comm);
-  calibration::write_calibration(res, out, comm, {true, r.picture_size});
+  const bool pictures = OutputOptions::from(job.start).pictures == "full";
+  calibration::write_calibration(res, out, comm, {pictures, r.picture_size});
   if (!log::is_root())
     return "";
   return calibration::calibration_table(res.report) + "results written to " + out.path().string()
-         + "/ (calibrated.toml for `breastsim simulate`, report.json, "
-           "misfit_history.png, measurements.png, view_<posture>.png)\n";
+         + "/ (calibrated.toml for `breastsim simulate`, report.json, surface_<posture>.json"
+         + (pictures ? ", misfit_history.png, measurements.png, view_<posture>.png" : "") + ")\n";
 }
 } // namespace
 

@@ -189,10 +189,10 @@ TEST(CalibrateRecovery, InterruptedRunResumesFromItsCheckpoint)
   CalibrateOptions o;
   o.checkpoint = temp_path("breastsim_test_resume.checkpoint.json");
   std::filesystem::remove(o.checkpoint);
-  o.optimizer.max_evals = 6; // "interrupted" early
+  o.optimizer.max_evals = 2; // "interrupted" early: the start and one step
   calibrate(start, synthetic_data(), fit, o, MPI_COMM_WORLD);
   const Checkpoint cp = read_checkpoint(o.checkpoint, fit);
-  EXPECT_GE(cp.evaluations, 6);
+  EXPECT_GE(cp.evaluations, 2);
 
   o.resume = true;
   o.optimizer.max_evals = 80;
@@ -289,9 +289,12 @@ TEST(CalibrateRecovery, LongFiveParametersWithModelErrorCorrection)
   EXPECT_NEAR(fitted(rep, "H")["fitted"].get<double>(), 0.060, 1e-3);
   EXPECT_NEAR(fitted(rep, "mu")["fitted"].get<double>(), mu_true, 0.15 * mu_true);
   EXPECT_NEAR(fitted(rep, "c")["fitted"].get<double>(), c_true, 0.30 * c_true);
-  // lambda is not determined by these observables: flagged, not claimed.
-  EXPECT_GT(fitted(rep, "lambda")["relative_standard_error"].get<double>(), 0.7);
-  EXPECT_NE(fitted(rep, "lambda")["flag"].get<std::string>(), "");
+  // lambda is not determined by these observables: its 95 % interval spans
+  // more than a factor of 10 (relative SE above 0.6), mu's less than a factor of 2.
+  const auto lambda = fitted(rep, "lambda");
+  EXPECT_GT(lambda["relative_standard_error"].get<double>(), 0.6);
+  EXPECT_GT(lambda["interval_95"][1].get<double>() / lambda["interval_95"][0].get<double>(), 10.0);
+  EXPECT_LT(fitted(rep, "mu")["interval_95"][1].get<double>() / fitted(rep, "mu")["interval_95"][0].get<double>(), 2.0);
   EXPECT_EQ(rep["model_error_correction"]["fine_posture_solves"].get<int>(),
             3 * static_cast<int>(rep["model_error_correction"]["passes"].size()));
   EXPECT_EQ(rep["meshes_built"].get<int>(), 1);

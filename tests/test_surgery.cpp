@@ -5,6 +5,7 @@
 #include "incision.hpp"
 #include "errors.hpp"
 #include "fixtures.hpp"
+#include "output.hpp"
 #include "reference_reset.hpp"
 #include "surgery.hpp"
 #include <gtest/gtest.h>

@@ -24,12 +24,15 @@ double sum_squares(const std::vector<double>& r)
 /// step; decrease: its relative decrease of chi2.
 bool damped_step(const ResidualFunction& f, const Matrix& A, const std::vector<double>& g,
                  const std::vector<double>& lo, const std::vector<double>& hi, double min_step,
-                 LsqResult& res, double& lambda, double& max_step, double& decrease)
+                 int max_evaluations, LsqResult& res, double& lambda, double& max_step,
+                 double& decrease)
 {
   constexpr int max_trials = 16;
   const std::size_t n = g.size();
   for (int attempt = 0; attempt < max_trials; ++attempt)
   {
+    if (max_evaluations > 0 && res.evaluations >= max_evaluations)
+      return false;
     const auto step = gauss_newton_step(A, g, lambda);
     if (!step) // singular
     {
@@ -218,9 +221,12 @@ LsqResult levenberg_marquardt(const ResidualFunction& f, std::vector<double> y0,
     std::vector<double> g;
     normal_equations(res.J, res.r, n, A, g);
     double max_step = 0, decrease = 0;
-    if (!damped_step(f, A, g, lo, hi, o.xtol / 10, res, lambda, max_step, decrease))
+    if (!damped_step(f, A, g, lo, hi, o.xtol / 10, o.max_evaluations, res, lambda, max_step,
+                     decrease))
     {
-      res.stop_reason = "no step decreases chi2 (at a minimum within the bounds)";
+      res.stop_reason = o.max_evaluations > 0 && res.evaluations >= o.max_evaluations
+                            ? "evaluation budget used up"
+                            : "no step decreases chi2 (at a minimum within the bounds)";
       break;
     }
     have_J = false;

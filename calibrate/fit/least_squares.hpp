@@ -24,6 +24,7 @@ using JacobianFunction = std::function<Matrix(const std::vector<double>& y,
 struct LsqOptions
 {
   int max_iterations = 20;
+  int max_evaluations = 0; ///< evaluations of r allowed (0: no limit besides the iterations)
   double fd_step = 1e-3;   ///< forward-difference step in y
   double xtol = 1e-3;      ///< stop when max |dy| falls below this
   double ftol_rel = 1e-6;  ///< ... or chi2 decreases less than this, relatively,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "optimizer.hpp"
 #include "errors.hpp"
+#include "least_squares.hpp"
 #include <cmath>
 #include <exception>
 #include <fmt/format.h>
@@ -65,12 +66,13 @@ std::vector<std::string> algorithm_names()
   std::vector<std::string> n;
   for (const auto& [k, _] : algorithms())
     n.push_back(k);
+  n.push_back("lm");
   return n;
 }
 
 void check_algorithm(const std::string& name)
 {
-  if (!algorithms().count(name))
+  if (name != "lm" && !algorithms().count(name))
     throw InputError(fmt::format("--algorithm '{}' is unknown (allowed: {})", name,
                                  fmt::join(algorithm_names(), ", ")));
 }
@@ -78,12 +80,41 @@ void check_algorithm(const std::string& name)
 bool uses_gradient(const std::string& name)
 {
   check_algorithm(name);
-  return name == "lbfgs" || name == "slsqp" || name == "mma";
+  return name == "lbfgs" || name == "slsqp" || name == "mma" || name == "lm";
 }
+
+namespace
+{
+/// Levenberg-Marquardt (least_squares.hpp) on the weighted residuals with
+/// Objective::jacobian (exact for the material parameters).
+OptimizerResult minimise_lm(Objective& f, const std::vector<double>& y0, const OptimizerOptions& o)
+{
+  std::vector<double> lo, hi;
+  for (const auto& p : f.fit())
+  {
+    lo.push_back(std::log(p.lower));
+    hi.push_back(std::log(p.upper));
+  }
+  LsqOptions lsq;
+  lsq.max_iterations = std::max(1, o.max_evals);
+  lsq.max_evaluations = std::max(1, o.max_evals);
+  lsq.xtol = o.xtol_log;
+  lsq.ftol_rel = o.ftol_rel;
+  lsq.fd_step = o.fd_step;
+  lsq.chi2_tol = 1e-4; // the Gauss-Newton model predicts at most this further decrease
+  auto r = [&](const std::vector<double>& y) { return f.residuals(y); };
+  auto J = [&](const std::vector<double>& y, const std::vector<double>&, int&)
+  { return f.jacobian(y, o.fd_step); };
+  const LsqResult res = levenberg_marquardt(r, y0, lo, hi, lsq, {}, J);
+  return {f.best_y(), f.best_chi2(), "Levenberg-Marquardt: " + res.stop_reason};
+}
+} // namespace
 
 OptimizerResult minimise(Objective& f, const std::vector<double>& y0, const OptimizerOptions& o)
 {
   check_algorithm(o.algorithm);
+  if (o.algorithm == "lm")
+    return minimise_lm(f, y0, o);
   const auto& fit = f.fit();
   const unsigned n = static_cast<unsigned>(fit.size());
   nlopt::opt opt(algorithms().at(o.algorithm), n);

@@ -2,9 +2,10 @@
 #pragma once
 // NLopt driver: minimise chi2(y) over the box of log bounds with an
 // algorithm chosen by name. Derivative-free: bobyqa (LN_BOBYQA), sbplx
-// (LN_SBPLX), neldermead (LN_NELDERMEAD); gradient-based with
-// forward-difference gradients of warm-started solves: lbfgs (LD_LBFGS),
-// slsqp (LD_SLSQP), mma (LD_MMA).
+// (LN_SBPLX), neldermead (LN_NELDERMEAD); gradient-based with the
+// Objective's Jacobian (exact sensitivities, forward differences for R, H):
+// lbfgs (LD_LBFGS), slsqp (LD_SLSQP), mma (LD_MMA); and lm, bounded
+// Levenberg-Marquardt on the weighted residuals (least_squares.hpp).
 #include "objective.hpp"
 #include <string>
 #include <vector>
@@ -13,7 +14,7 @@ namespace breastsim::calibration
 {
 struct OptimizerOptions
 {
-  std::string algorithm = "bobyqa";
+  std::string algorithm = "lm";
   int max_evals = 200;     ///< objective evaluations allowed (each solves every posture)
   double xtol_log = 1e-3;  ///< stop when every ln p moves less than this (0.1 %)
   double ftol_rel = 1e-8;  ///< ... or chi2 changes less than this, relatively

@@ -16,7 +16,7 @@ struct CalibrateRequest
 {
   std::string data_file;               ///< measurements (JSON) or a 3D surface recording
   std::string fit = "mu,c";            ///< --fit names
-  std::string algorithm = "bobyqa";    ///< optimizer.hpp
+  std::string algorithm = "lm";        ///< optimizer.hpp
   int max_evals = 200;                 ///< in total with --resume
   bool resume = false;
   bool remesh = false;                 ///< remesh for R, H instead of morphing

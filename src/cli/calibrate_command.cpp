@@ -5,6 +5,7 @@
 #include "command.hpp"
 #include "log.hpp"
 #include "output.hpp"
+#include "output_options.hpp"
 #include "overrides.hpp"
 #include "synthetic.hpp"
 #include "viewer.hpp"
@@ -36,8 +37,8 @@ Command add_calibrate_command(CLI::App& root)
                                          + calibration::fit_alias_names())
       ->capture_default_str();
   app->add_option("--algorithm", o->r.algorithm,
-                  "bobyqa, sbplx, neldermead (derivative-free); lbfgs, slsqp, mma (finite-"
-                  "difference gradients)")
+                  "lm (Levenberg-Marquardt with exact sensitivities); bobyqa, sbplx, neldermead "
+                  "(derivative-free); lbfgs, slsqp, mma (gradient-based)")
       ->capture_default_str();
   app->add_option("--max-evals", o->r.max_evals, "objective evaluations allowed (in total with "
                                                  "--resume)")
@@ -56,7 +57,7 @@ Command add_calibrate_command(CLI::App& root)
       ->capture_default_str();
   app->add_option("--ranks-per-case", o->r.ranks_per_case,
                   "MPI ranks per forward solve: the ranks split into groups of this many, which "
-                  "solve the finite-difference Jacobian's columns side by side (0: all ranks on "
+                  "solve the forward-difference columns (R, H) side by side (0: all ranks on "
                   "each solve; must divide the number of ranks)")
       ->capture_default_str();
   return {app, [o]()
@@ -64,9 +65,10 @@ Command add_calibrate_command(CLI::App& root)
             const Config c = load_case(o->case_file, o->sets);
             insert_petsc_options(c, o->petsc_options);
             calibration::check_calibrate_request(o->r, c);
-            check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
             // Every input is read and checked before the output folder is claimed.
             const auto job = diagnosis::prepare_calibration(c, o->r);
+            if (job.data.recording || OutputOptions::from(c).pictures == "full")
+              check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
             const std::string default_out = "results/" + CaseOptions::from(c).name + "_calibrated";
             const std::vector<std::string> inputs = {o->r.data_file, o->case_file};
             std::filesystem::path checkpoint;

@@ -16,7 +16,8 @@ fail() { echo "FAIL $*"; fails=$((fails + 1)); }
 printf '[geometry]\nmesh_size = 0.016\n[tissue]\nmu = 300.0\n' > start.toml
 printf '[geometry]\nmesh_size = 0.016\n' > truth.toml
 "$BIN" -q measure truth.toml --mesh-size 0.012 --noise 0.0005 --seed 3 --out m.json || fail "measure"
-"$BIN" -q calibrate m.json --case start.toml --fit mu --max-evals 30 --size 640x480 --out fit \
+"$BIN" -q calibrate m.json --case start.toml --fit mu --max-evals 30 --size 640x480 \
+  --set output.pictures=full --out fit \
   >calib.out 2>calib.err || { fail "calibrate"; cat calib.err; }
 [ -f fit/calibrated.toml ] && [ -f fit/report.json ] || fail "calibrate outputs missing"
 # Pictures next to the JSON: plots of the fit and the calibrated breast per measured posture.
