@@ -95,11 +95,11 @@ TEST(AppProgress, CalibrationCountsItsEvaluations)
 TEST(AppPoleVolumes, QuarterSphereHalfBelowTheEquator)
 {
   const double r = 0.05;
-  const auto v = app::pole_volumes(quarter_sphere(r, 40), 0.0);
+  const auto v = breastsim::pole_volumes(quarter_sphere(r, 40), 0.0);
   const double exact = M_PI * r * r * r / 3; // a quarter of the ball
   EXPECT_NEAR(v.total / exact, 1, 2e-3);
   EXPECT_NEAR(v.lower / v.total, 0.5, 1e-9);
-  EXPECT_NEAR(app::pole_volumes(quarter_sphere(r, 40), -r).lower, 0, 1e-12);
+  EXPECT_NEAR(breastsim::pole_volumes(quarter_sphere(r, 40), -r).lower, 0, 1e-12);
 }
 
 TEST(AppServeOptions, RangesAndLoopback)

@@ -25,8 +25,9 @@ nlohmann::json posture_view(const nlohmann::json& p, const fs::path& surface)
                       {"volume_cm3", 1e6 * p.at("volume_m3").get<double>()}};
   if (fs::exists(surface))
   {
-    const auto pole = pole_volumes(read_json(surface), nipple[2]);
-    v["lower_pole_share"] = pole.total > 0 ? pole.lower / pole.total : 0.0;
+    const auto doc = read_json(surface);
+    const auto pole = pole_volumes(doc, nipple[2]);
+    v["lower_pole_share"] = lower_pole_share(doc, nipple[2]);
     v["volume_front_cm3"] = 2e6 * pole.total; // full breast, in front of the chest wall y = 0
   }
   return v;
@@ -126,7 +127,7 @@ nlohmann::json summarize_sweep(const Config& c, const fs::path& dir)
                 {"nipple_mm", {1e3 * n[0], 1e3 * n[1], 1e3 * n[2]}}, {"nipple_to_base_mm", 1e3 * n[1]},
                 {"projection_mm", 1e3 * r.at("projection_standing_m").get<double>()},
                 {"z_min_mm", 1e3 * r.at("z_min_standing_m").get<double>()},
-                {"lower_pole_height_share", r.at("lower_pole_ratio")}, {"max_suture_gap_mm", 1e3 * gap},
+                {"lower_pole_share", r.at("lower_pole_share")}, {"max_suture_gap_mm", 1e3 * gap},
                 {"wall_time_s", r.at("wall_time_s")}});
     rows.push_back(row);
   }
@@ -160,26 +161,6 @@ std::string identifiability_in_words(const std::string& flag, const nlohmann::js
              ? "identifiable: relative standard error " +
                    std::to_string(static_cast<int>(std::lround(100 * relative_se.get<double>()))) + " %"
              : "identifiable";
-}
-
-PoleVolumes pole_volumes(const nlohmann::json& surface, double z_nipple)
-{
-  const auto x = surface.at("vertices").get<std::vector<double>>();
-  const auto t = surface.at("triangles").get<std::vector<std::int64_t>>();
-  PoleVolumes v;
-  for (std::size_t k = 0; k + 2 < t.size(); k += 3)
-  {
-    const double* a = &x.at(3 * t[k]);
-    const double* b = &x.at(3 * t[k + 1]);
-    const double* c = &x.at(3 * t[k + 2]);
-    // y component of (b - a) x (c - a) / 2: the oriented area projected on y
-    const double ny = 0.5 * ((b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]));
-    const double part = (a[1] + b[1] + c[1]) / 3 * ny;
-    v.total += part;
-    if ((a[2] + b[2] + c[2]) / 3 < z_nipple)
-      v.lower += part;
-  }
-  return v;
 }
 
 nlohmann::json summarize_result(const std::string& kind, const Config& c, const fs::path& dir)

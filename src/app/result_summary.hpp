@@ -9,6 +9,7 @@
 // identifiability in words and the misfit. And the files of the result the
 // API may serve.
 #include "config.hpp"
+#include "pole_volumes.hpp"
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -28,20 +29,6 @@ nlohmann::json read_result_json(const std::filesystem::path& file);
 /// A fitted parameter's identifiability in words: its flag, else its
 /// relative standard error (`relative_se`, null if unknown) in per cent.
 std::string identifiability_in_words(const std::string& flag, const nlohmann::json& relative_se);
-/// The volume between a half-breast skin surface document
-/// (surface_<posture>.json, deformed vertices) and the chest-wall plane
-/// y = 0, by the divergence theorem with F = (0, y, 0) (zero on that plane,
-/// tangential to the symmetry plane x = 0 and to the horizontal cut at the
-/// nipple), and its part below the nipple height z (triangles split by their
-/// centroid's height). The springs move the base a few mm off y = 0 (into
-/// the chest lying supine, off it at the top standing): the volume in front
-/// of the chest wall differs from the body's by up to ~5 %. Half-model
-/// volumes [m^3].
-struct PoleVolumes
-{
-  double lower = 0, total = 0;
-};
-PoleVolumes pole_volumes(const nlohmann::json& surface, double z_nipple);
 /// Files of the result folder (as listed in its marker) the API serves:
 /// public name (path with '/' -> '_') -> path relative to the job folder.
 /// JSON, TOML, HTML, PNG, CSV and text files only.

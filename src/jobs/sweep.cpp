@@ -7,8 +7,10 @@
 #include "on_root.hpp"
 #include "log.hpp"
 #include "output.hpp"
+#include "pole_volumes.hpp"
 #include "timer.hpp"
 #include <fmt/format.h>
+#include <fstream>
 
 namespace breastsim
 {
@@ -66,7 +68,8 @@ SweepRow run_one(Config c, const std::map<std::string, Value>& values, const std
     row.nipple = o.nipple;
     row.projection = o.projection;
     row.z_min = o.z_min;
-    row.lower_pole_ratio = (o.nipple[2] - o.z_min) / (o.z_max - o.z_min);
+    std::ifstream surface(dir / "postop" / ("surface_" + it->posture.name + ".json")); // just written
+    row.lower_pole_share = lower_pole_share(nlohmann::json::parse(surface), o.nipple[2]);
     row.max_gap = r.suture.max_gap;
     row.newton_iterations = r.suture.closure.newton_iterations;
     for (const auto& p : r.post)
@@ -99,7 +102,7 @@ nlohmann::json to_json(const SweepRow& r)
   }
   j.update({{"resected_volume_m3", r.resected_volume}, {"nipple_standing_m", r.nipple},
             {"projection_standing_m", r.projection}, {"z_min_standing_m", r.z_min},
-            {"lower_pole_ratio", r.lower_pole_ratio}, {"max_suture_gap_m", r.max_gap},
+            {"lower_pole_share", r.lower_pole_share}, {"max_suture_gap_m", r.max_gap},
             {"newton_iterations", r.newton_iterations}});
   return j;
 }
@@ -126,7 +129,7 @@ SweepRow row_from_json(const nlohmann::json& j)
   r.nipple = j.at("nipple_standing_m").get<std::array<double, 3>>();
   r.projection = j.at("projection_standing_m").get<double>();
   r.z_min = j.at("z_min_standing_m").get<double>();
-  r.lower_pole_ratio = j.at("lower_pole_ratio").get<double>();
+  r.lower_pole_share = j.at("lower_pole_share").get<double>();
   r.max_gap = j.at("max_suture_gap_m").get<double>();
   r.newton_iterations = j.at("newton_iterations").get<int>();
   return r;
@@ -137,7 +140,7 @@ std::string csv_table(const std::vector<SweepRow>& rows)
   std::string csv;
   for (const auto& [k, v] : rows.front().parameters)
     csv += k + ",";
-  csv += "ok,resected_volume_cm3,nipple_y_mm,nipple_z_mm,projection_mm,z_min_mm,lower_pole_ratio,"
+  csv += "ok,resected_volume_cm3,nipple_y_mm,nipple_z_mm,projection_mm,z_min_mm,lower_pole_share,"
          "max_gap_mm,newton_iterations,wall_time_s\n";
   for (const auto& r : rows)
   {
@@ -145,7 +148,7 @@ std::string csv_table(const std::vector<SweepRow>& rows)
       csv += plain_text(v) + ",";
     csv += fmt::format("{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.5f},{},{:.2f}\n", r.ok ? 1 : 0,
                        1e6 * r.resected_volume, 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.projection,
-                       1e3 * r.z_min, r.lower_pole_ratio, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
+                       1e3 * r.z_min, r.lower_pole_share, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
   }
   return csv;
 }
@@ -257,7 +260,7 @@ std::string sweep_table(const std::vector<SweepRow>& rows)
   for (const auto& [k, v] : rows.front().parameters)
     s += fmt::format("{:>16} ", k);
   s += fmt::format("{:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>7} {:>7}\n", "resect", "nipple y",
-                   "nipple z", "proj", "z_min", "lower/H", "gap", "newton", "time");
+                   "nipple z", "proj", "z_min", "lower/V", "gap", "newton", "time");
   for (std::size_t k = 0; k < rows.front().parameters.size(); ++k)
     s += fmt::format("{:>16} ", "");
   s += fmt::format("{:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>7} {:>7}\n", "[cm3]", "[mm]", "[mm]",
@@ -273,7 +276,7 @@ std::string sweep_table(const std::vector<SweepRow>& rows)
     }
     s += fmt::format("{:>9.1f} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>10.3f} {:>9.4f} {:>7d} {:>7.1f}\n",
                      1e6 * r.resected_volume, 1e3 * r.nipple[1], 1e3 * r.nipple[2], 1e3 * r.projection,
-                     1e3 * r.z_min, r.lower_pole_ratio, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
+                     1e3 * r.z_min, r.lower_pole_share, 1e3 * r.max_gap, r.newton_iterations, r.seconds);
   }
   return s;
 }

@@ -15,10 +15,11 @@ struct SweepRow
   double resected_volume = 0;               ///< full breast [m^3]
   std::array<double, 3> nipple{};           ///< post-op standing nipple [m]
   double projection = 0, z_min = 0;         ///< post-op standing [m]
-  /// Lower-pole share of the standing breast height, (z_nipple - z_min) /
-  /// (z_max - z_min): the aesthetic ideal is about 0.55 (upper:lower 45:55);
+  /// Lower pole's share of the standing breast's volume in front of the
+  /// chest wall, below the nipple (pole_volumes.hpp, the definition of the
+  /// result tables): the aesthetic ideal is about 0.55 (upper:lower 45:55);
   /// a larger value is a bottomed-out, overfull lower pole.
-  double lower_pole_ratio = 0;
+  double lower_pole_share = 0;
   double max_gap = 0;
   int newton_iterations = 0;
   double seconds = 0;

@@ -22,6 +22,7 @@ checks = [
     all(z(35, h) > z(25, h) for h in (0.02, 0.03)),          # a raises the nipple
     all(zmin(35, h) > zmin(25, h) for h in (0.02, 0.03)),    # small a: lower pole hangs lower
     all(v[k]["resected_volume_m3"] > 0 and v[k]["max_suture_gap_m"] <= 1e-4 for k in v),
+    all(0.2 < v[k]["lower_pole_share"] < 0.8 for k in v),  # share of the volume, as in the result table
 ]
 print("checks:", checks)
 sys.exit(0 if all(checks) else 1)

@@ -3,7 +3,7 @@
 // library's sweep() over +-1 step of two of a, s, h, d) and its table like
 // the paper's Fig. 10: one row per value of the first parameter, one column
 // per value of the second, in each cell the resected volume and weight, the
-// standing nipple-to-base distance and the lower pole's share of the height,
+// standing nipple-to-base distance and the lower pole's share of the volume,
 // over a picture of the post-operative shape.
 
 export const SWEEP_KEYS = { "incision.a_deg": ["a", 1, "°"], "incision.s": ["s", 1e3, " mm"],
@@ -36,7 +36,7 @@ function cell(row, ideal, current) {
     `<img class="sweep-shape" alt="" data-surface="${esc(row.postop_surface)}"><br>` +
     `<b data-key="resected_volume_cm3">${row.resected_volume_cm3.toFixed(1)}</b> cm³, ${row.resected_weight_g.toFixed(0)} g<br>` +
     `nipple→base <span class="${ok}" data-key="nipple_to_base_mm">${nb.toFixed(1)}</span> mm<br>` +
-    `lower pole ${(100 * row.lower_pole_height_share).toFixed(0)} % of the height</td>`;
+    `lower pole ${(100 * row.lower_pole_share).toFixed(0)} % of the volume</td>`;
 }
 
 // The table of a finished sweep job; the plan swept around is marked.
@@ -52,7 +52,7 @@ export function sweepTable(job) {
   for (const v1 of values(k1))
     html += `<tr><th>${show(k1, v1)}</th>` + cols.map((v2) => cell(find(v1, v2), job.summary.ideal, isCurrent(v1, v2))).join("") + "</tr>";
   return html + `</tbody></table><p class="hint">Sweep ${job.id.slice(0, 6)} around the plan in bold frame ` +
-    "(standing, post-operative; the lower pole's share of the breast height, ideal ≈ 55 %). Click a cell to load its plan.</p>";
+    "(standing, post-operative; the lower pole's share of the volume in front of the chest wall, below the nipple, ideal ≈ 55 %). Click a cell to load its plan.</p>";
 }
 
 // Each cell's picture, drawn by the page's renderer `view`: the standing skin
