@@ -22,7 +22,7 @@ std::string fit_recording(const CalibrateJob& job, const OutputTarget& out, MPI_
   d.ranks_per_case = job.request.ranks_per_case;
   OutputDir dir(out, comm);
   const auto res = diagnose(rec, job.start, d, comm);
-  write_diagnosis(dir.path(), res, rec, comm);
+  write_diagnosis(dir.path(), res, rec, comm, OutputOptions::from(job.start).pictures == "full");
   write_text(dir.path() / "calibrated.toml", res.final_fit.config.to_toml(), comm);
   dir.commit();
   if (!log::is_root())

@@ -4,6 +4,7 @@
 #include "diagnose.hpp"
 #include "log.hpp"
 #include "output.hpp"
+#include "output_options.hpp"
 #include "viewer.hpp"
 #include <algorithm>
 #include <cmath>
@@ -81,7 +82,7 @@ std::vector<double> mm(const std::vector<double>& v)
 } // namespace
 
 void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const Recording& rec,
-                     MPI_Comm comm)
+                     MPI_Comm comm, bool pictures)
 {
   write_json(dir / "diagnosis.json", to_json(d, rec), comm);
   write_text(dir / "diagnosis.txt", report_text(d, rec), comm);
@@ -113,7 +114,8 @@ void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const
   }
   write_json(dir / "residuals.json", res, comm);
   write_text(dir / "case.diagnosed.toml", after.config.to_toml(), comm);
-  run_viewer_script("diagnose_plots.py", {dir.string()}, "residual maps of " + dir.string(), comm);
+  if (pictures)
+    run_viewer_script("diagnose_plots.py", {dir.string()}, "residual maps of " + dir.string(), comm);
   // The final model's skin with |residual| fields: breast pictures and the 3D page.
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -130,6 +132,8 @@ void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const
     }
     write_text(dir / ("surface_" + rec.postures[p].name + ".json"), text, comm);
   }
+  if (!pictures)
+    return;
   render_pictures(dir, {}, comm);
   write_view_page(dir, {}, comm);
 }
@@ -141,11 +145,13 @@ std::string run_diagnosis(const Recording& rec, const Config& current, const Dia
       "diagnose (its numerical noise floor solves on a finer mesh of the cap)");
   OutputDir dir(out, comm);
   const auto d = diagnose(rec, current, o, comm);
-  write_diagnosis(dir.path(), d, rec, comm);
+  const bool pictures = OutputOptions::from(current).pictures == "full";
+  write_diagnosis(dir.path(), d, rec, comm, pictures);
   dir.commit();
   if (!log::is_root())
     return "";
   return report_text(d, rec) + "results written to " + out.path().string()
-         + "/ (diagnosis.json, diagnosis.txt, residual maps, case.diagnosed.toml)\n";
+         + "/ (diagnosis.json, diagnosis.txt, residuals, case.diagnosed.toml"
+         + (pictures ? ", residual maps, pictures, index.html" : "; pictures: breastsim view") + ")\n";
 }
 } // namespace breastsim::diagnosis

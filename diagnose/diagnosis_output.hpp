@@ -17,9 +17,10 @@
 
 namespace breastsim::diagnosis
 {
-/// Collective (rank 0 writes; the pictures run under python3 on rank 0).
+/// Collective (rank 0 writes; the pictures, only with `pictures`, run under
+/// python3 on rank 0; `breastsim view` draws them later).
 void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const Recording& rec,
-                     MPI_Comm comm);
+                     MPI_Comm comm, bool pictures);
 
 /// Collective. `breastsim diagnose`: diagnose `rec` against `current` and
 /// write every file into `out` (staged, replaced only when complete); the

@@ -52,6 +52,9 @@ Command add_view_command(CLI::App& root)
               render_pictures(dir, {o->compare, o->size, staging.path()}, MPI_COMM_WORLD);
               write_view_page(dir, o->compare, MPI_COMM_WORLD, staging.path() / "index.html");
             }
+            if (std::filesystem::is_regular_file(dir / "residuals.json")) // a diagnosis: its residual maps
+              run_viewer_script("diagnose_plots.py", {dir.string(), staging.path().string()},
+                                "residual maps of " + dir.string(), MPI_COMM_WORLD);
             staging.commit_files(); // the marker lists the pictures too
             if (log::is_root())
             {

@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: LGPL-3.0-or-later
 """Residual maps of a breastsim diagnosis.
 
-Usage: python3 diagnose_plots.py RESULT_DIR
+Usage: python3 diagnose_plots.py RESULT_DIR [OUT_DIR]
 
 Reads RESULT_DIR/residuals.json (written by `breastsim diagnose`) and writes
+into OUT_DIR (default RESULT_DIR)
   residuals_<posture>.png  recorded points coloured by the normal distance to
                            the simulated skin [mm], before (current model)
                            and after (with the discovered physics), front
@@ -68,14 +69,15 @@ def rms_chart(doc, out):
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) not in (2, 3):
         print(__doc__, file=sys.stderr)
         return 2
     d = Path(sys.argv[1])
+    out = Path(sys.argv[2]) if len(sys.argv) == 3 else d
     doc = json.loads((d / "residuals.json").read_text())
     for p in doc["postures"]:
-        residual_map(p, doc["noise_sigma_mm"], d / f"residuals_{p['name']}.png")
-    rms_chart(doc, d / "residual_rms.png")
+        residual_map(p, doc["noise_sigma_mm"], out / f"residuals_{p['name']}.png")
+    rms_chart(doc, out / "residual_rms.png")
     return 0
 
 

@@ -24,7 +24,8 @@ hide=()
 # The truth: P2 at 6 mm (the diagnosis: P2 at 12 mm, its check mesh 8 mm).
 "$bin" -q record "$case_file" "${sets[@]}" --set geometry.order=2 "${hide[@]}" --seed 7 --mesh-size 0.006 \
   --out "$work/recording.json"
-"$bin" -q diagnose "$work/recording.json" --case "$case_file" "${sets[@]}" --out "$work/out" \
+"$bin" -q diagnose "$work/recording.json" --case "$case_file" "${sets[@]}" --set output.pictures=full \
+  --out "$work/out" \
   > "$work/log.txt" 2>&1 || { cat "$work/log.txt"; exit 1; }
 cat "$work/log.txt"
 
