@@ -58,10 +58,14 @@ runs = {w: [{r["name"]: r for r in json.load(open(f"d-{w}-{i}/summary.json"))["r
         for w in ("old", "new")}
 for name in runs["old"][0]:
     t = {w: statistics.median(r[name]["seconds"] for r in runs[w]) for w in runs}
+    each = {w: " ".join(f"{r[name]['seconds']:.1f}" for r in runs[w]) for w in runs}
     print(f"diagnose {name:<19} old {t['old']:7.1f} s   new {t['new']:7.1f} s   old/new {t['old'] / t['new']:.2f}"
-          f"   (medians of {n})")
+          f"   (medians of {n}: old {each['old']}, new {each['new']})")
     for w in ("old", "new"):
         r = runs[w][0][name]
+        if r.get("exit_code"):
+            print(f"  {w}: failed (exit code {r['exit_code']})")
+            continue
         print(f"  {w}: named {r['named'] or 'none'}, fitted " +
-              ", ".join(f"{k} = {v:.5g}" for k, v in r["fitted"].items()))
+              ", ".join(f"{k} = {v:.5g}" for k, v in r.get("fitted", {}).items()))
 PY
