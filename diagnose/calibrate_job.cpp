@@ -22,7 +22,7 @@ std::string fit_recording(const CalibrateJob& job, const OutputTarget& out, MPI_
   d.ranks_per_case = job.request.ranks_per_case;
   OutputDir dir(out, comm);
   const auto res = diagnose(rec, job.start, d, comm);
-  write_diagnosis(dir.path(), res, rec, comm, OutputOptions::from(job.start).pictures == "full");
+  write_diagnosis(dir.path(), res, rec, comm, OutputOptions::from(job.start).pictures_on());
   write_text(dir.path() / "calibrated.toml", res.final_fit.config.to_toml(), comm);
   dir.commit();
   if (!log::is_root())
@@ -48,7 +48,7 @@ std::string fit_measurements(const CalibrateJob& job, const OutputTarget& out,
   log::info("calibrating [{}] with {} against {} measurements in {} postures", r.fit, r.algorithm,
             job.data.measurements.items.size(), job.data.measurements.postures.size());
   const auto res = calibration::calibrate(job.start, job.data.measurements, job.fit, co, comm);
-  const bool pictures = OutputOptions::from(job.start).pictures == "full";
+  const bool pictures = OutputOptions::from(job.start).pictures_on();
   calibration::write_calibration(res, out, comm, {pictures, r.picture_size});
   if (!log::is_root())
     return "";

@@ -145,13 +145,13 @@ std::string run_diagnosis(const Recording& rec, const Config& current, const Dia
       "diagnose (its numerical noise floor solves on a finer mesh of the cap)");
   OutputDir dir(out, comm);
   const auto d = diagnose(rec, current, o, comm);
-  const bool pictures = OutputOptions::from(current).pictures == "full";
+  const bool pictures = OutputOptions::from(current).pictures_on();
   write_diagnosis(dir.path(), d, rec, comm, pictures);
   dir.commit();
   if (!log::is_root())
     return "";
   return report_text(d, rec) + "results written to " + out.path().string()
          + "/ (diagnosis.json, diagnosis.txt, residuals, case.diagnosed.toml"
-         + (pictures ? ", residual maps, pictures, index.html" : "; pictures: breastsim view") + ")\n";
+         + (pictures ? ", residual maps, pictures, index.html" : "") + ")\n";
 }
 } // namespace breastsim::diagnosis

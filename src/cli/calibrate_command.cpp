@@ -67,7 +67,7 @@ Command add_calibrate_command(CLI::App& root)
             calibration::check_calibrate_request(o->r, c);
             // Every input is read and checked before the output folder is claimed.
             const auto job = diagnosis::prepare_calibration(c, o->r);
-            if (job.data.recording || OutputOptions::from(c).pictures == "full")
+            if (job.data.recording || OutputOptions::from(c).pictures_on())
               check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
             const std::string default_out = "results/" + CaseOptions::from(c).name + "_calibrated";
             const std::vector<std::string> inputs = {o->r.data_file, o->case_file};
@@ -79,7 +79,9 @@ Command add_calibrate_command(CLI::App& root)
                                           : o->checkpoint,
                                       inputs, "the checkpoint");
             const auto out = claim_output(o->out, default_out, inputs);
-            std::cout << diagnosis::run_calibration(job, out, checkpoint, MPI_COMM_WORLD);
+            const std::string report = diagnosis::run_calibration(job, out, checkpoint, MPI_COMM_WORLD);
+            if (log::is_root())
+              std::cout << report << pictures_hint(c, out.path());
             return 0;
           }};
 }

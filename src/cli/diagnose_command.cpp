@@ -7,6 +7,7 @@
 #include "command.hpp"
 #include "diagnosis_output.hpp"
 #include "fit_parameters.hpp"
+#include "log.hpp"
 #include "output_options.hpp"
 #include "overrides.hpp"
 #include "recording.hpp"
@@ -103,10 +104,12 @@ Command add_diagnose_command(CLI::App& root)
             const auto rec = calibration::read_recording(o->recording);
             o->d.candidates = split_list(o->candidates);
             CaseGroups::check(MPI_COMM_WORLD, o->d.ranks_per_case, "--ranks-per-case");
-            if (OutputOptions::from(c).pictures == "full")
+            if (OutputOptions::from(c).pictures_on())
               check_picture_tools(MPI_COMM_WORLD); // fail before the solves, not after
             const auto out = claim_output(o->out, "results/diagnosis", {o->recording, o->case_file});
-            std::cout << diagnosis::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);
+            const std::string report = diagnosis::run_diagnosis(rec, c, o->d, out, MPI_COMM_WORLD);
+            if (log::is_root())
+              std::cout << report << pictures_hint(c, out.path());
             return 0;
           }};
 }
