@@ -67,7 +67,7 @@ Command add_calibrate_command(CLI::App& root)
             calibration::check_calibrate_request(o->r, c);
             // Every input is read and checked before the output folder is claimed.
             const auto job = diagnosis::prepare_calibration(c, o->r);
-            if (job.data.recording || OutputOptions::from(c).pictures_on())
+            if (OutputOptions::from(c).pictures_on())
               check_picture_tools(MPI_COMM_WORLD); // before a long fit, not after it
             const std::string default_out = "results/" + CaseOptions::from(c).name + "_calibrated";
             const std::vector<std::string> inputs = {o->r.data_file, o->case_file};
