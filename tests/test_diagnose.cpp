@@ -52,6 +52,43 @@ TEST(SurfaceDistance, SignedNormalDistanceToASurface)
   EXPECT_NEAR(m[2].distance, 0.001, 1e-15);
 }
 
+TEST(SurfaceDistance, ContinuousAcrossAnInnerEdgeWhateverTheTriangleOrder)
+{
+  // A roof: two triangles meeting at the ridge y = 0.5, z = 0.1 (normals
+  // up). A point above the ridge is nearest the ridge, whose two triangles
+  // give the same Euclidean distance, in either order.
+  SkinSurface s;
+  s.deformed = {{0, 0, 0}, {1, 0, 0}, {0, 0.5, 0.1}, {1, 0.5, 0.1}, {0, 1, 0}, {1, 1, 0}};
+  const std::vector<std::array<std::int32_t, 3>> one = {{0, 1, 3}, {0, 3, 2}, {2, 3, 5}, {2, 5, 4}};
+  const Point p = {0.5, 0.5, 0.3};
+  s.triangles = one;
+  const auto m1 = match_points(s, {p});
+  s.triangles.assign(one.rbegin(), one.rend());
+  const auto m2 = match_points(s, {p});
+  EXPECT_TRUE(m1[0].to_point);
+  EXPECT_NEAR(m1[0].distance, 0.2, 1e-14);
+  EXPECT_NEAR(m2[0].distance, 0.2, 1e-14);
+
+  // Its derivative when the ridge rises: dd = -e . dq = -dz.
+  std::vector<Point> velocity(6, Point{0, 0, 0});
+  velocity[2] = velocity[3] = {0, 0, 1};
+  s.triangles = one;
+  EXPECT_NEAR(distance_derivatives(s, {p}, m1, velocity)[0], -1.0, 1e-12);
+  // Tilting the ridge's vertices: against a central difference.
+  velocity[2] = {0.3, -0.2, 0.5};
+  velocity[3] = {-0.1, 0.4, 0.2};
+  const double h = 1e-6;
+  auto moved = [&](double t)
+  {
+    SkinSurface m = s;
+    for (std::size_t v = 0; v < m.deformed.size(); ++v)
+      for (int k = 0; k < 3; ++k)
+        m.deformed[v][k] += t * velocity[v][k];
+    return match_points(m, {p})[0].distance;
+  };
+  EXPECT_NEAR(distance_derivatives(s, {p}, m1, velocity)[0], (moved(h) - moved(-h)) / (2 * h), 1e-8);
+}
+
 TEST(Diagnose, BoundaryCorrectedCriticalValue)
 {
   // 0.5 P(chi2_1 > x) = level: P(chi2_1 > 10.828) = 0.001, P(chi2_1 > 2.706) = 0.1.

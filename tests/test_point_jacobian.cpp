@@ -6,10 +6,8 @@
 // postures. A recorded point whose closest triangle changes within the
 // difference step has a distance that jumps (the normal of another
 // triangle): such rows, where the central difference disagrees with both
-// one-sided differences, are not compared, and there are few. Serial only:
-// on 2 ranks some partitions gave rows that disagree by up to 1e-2 of the
-// column (not yet explained; likely points at triangle ties, whose closest
-// triangle follows the gathered order), so that check is not yet reliable.
+// one-sided differences, are not compared, and there are few. Serial and on
+// 2 ranks (ctest unit_mpi_sensitivities).
 #include "candidates.hpp"
 #include "fit_state.hpp"
 #include "fixtures.hpp"
