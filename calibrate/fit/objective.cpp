@@ -1,25 +1,11 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "objective.hpp"
 #include "misfit.hpp"
-#include "schema.hpp"
 #include <cmath>
 #include <limits>
 
 namespace breastsim::calibration
 {
-namespace
-{
-/// Whether column j has exact sensitivities: a material parameter bound to a
-/// UFL Constant (the shape R, H moves the mesh: forward differences).
-bool exact_column(const FitParameter& p)
-{
-  if (p.role == generated::FitRole::shape)
-    return false;
-  const KeyInfo& k = key_info(p.key);
-  return !k.ufl_name.empty() && k.type == KeyType::number;
-}
-} // namespace
-
 Objective::Objective(Config base, const Measurements& data, std::vector<FitParameter> fit,
                      ForwardModel& forward, int evaluations_done)
     : _base(std::move(base)), _data(data), _fit(std::move(fit)), _forward(forward),
@@ -99,15 +85,16 @@ Matrix Objective::jacobian(const std::vector<double>& y, double h, bool central)
 {
   const std::vector<double> r0 = residuals(y);
   Matrix J(r0.size(), std::vector<double>(y.size()));
+  // Exact where the parameter's neighbouring cases share the mesh.
+  const Config c = with_parameters(_base, _fit, y);
   std::vector<std::size_t> exact, differenced;
   for (std::size_t j = 0; j < y.size(); ++j)
-    (exact_column(_fit[j]) ? exact : differenced).push_back(j);
+    (ForwardModel::key_difference(c, _fit[j].key) ? exact : differenced).push_back(j);
 
   // Exact columns first, while the forward model is at y (the differenced
   // columns' solves move it): dr_i/dy_j = p_j dG_i/dp_j / sigma_i.
   if (!exact.empty())
   {
-    const Config c = with_parameters(_base, _fit, y);
     std::vector<std::string> keys;
     for (std::size_t j : exact)
       keys.push_back(_fit[j].key);

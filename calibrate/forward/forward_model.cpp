@@ -216,21 +216,32 @@ void ForwardModel::sensitivities(std::size_t i, const Config& c,
   }
 }
 
+std::optional<ForwardModel::CaseDifference> ForwardModel::key_difference(const Config& c,
+                                                                         const std::string& key)
+{
+  constexpr double e = 1e-4; // relative step
+  const KeyInfo& info = key_info(key);
+  if (info.ufl_name.empty() || info.type != KeyType::number)
+    return std::nullopt;
+  const double p = c.number(key), h = e * (p != 0 ? std::abs(p) : 1.0);
+  CaseDifference d{c, c, 2 * h};
+  d.plus.set(key, p + h);
+  d.minus.set(key, p - h);
+  if (!same_mesh(c, d.plus) || !same_mesh(c, d.minus))
+    return std::nullopt;
+  return d;
+}
+
 std::vector<Observables> ForwardModel::sensitivities(std::size_t i, const Config& c,
                                                      const std::vector<std::string>& keys)
 {
-  constexpr double e = 1e-4; // relative step
   std::vector<CaseDifference> directions;
   for (const auto& k : keys)
   {
-    const KeyInfo& info = key_info(k);
-    if (info.ufl_name.empty() || info.type != KeyType::number || k == "geometry.R" || k == "geometry.H")
+    auto d = key_difference(c, k);
+    if (!d)
       throw std::logic_error(fmt::format("sensitivities: '{}' is not a material parameter", k));
-    const double p = c.number(k), h = e * (p != 0 ? std::abs(p) : 1.0);
-    CaseDifference d{c, c, 2 * h};
-    d.plus.set(k, p + h);
-    d.minus.set(k, p - h);
-    directions.push_back(std::move(d));
+    directions.push_back(std::move(*d));
   }
   std::vector<Observables> out(keys.size());
   sensitivities(i, c, directions,

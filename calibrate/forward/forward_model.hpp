@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -64,10 +65,15 @@ public:
   /// `c`. Collective; throws SolveError.
   void sensitivities(std::size_t i, const Config& c, const std::vector<CaseDifference>& directions,
                      const SensitivityVisitor& visit);
+  /// The direction of number key `key` at case `c`: c with the key at
+  /// p +- h, h = 1e-4 |p| (1e-4 at p = 0); none if the key is bound to no
+  /// UFL Constant or its neighbouring cases move the mesh (same_mesh: R, H).
+  static std::optional<CaseDifference> key_difference(const Config& c, const std::string& key);
   /// d observables / d p of posture `i` at case `c`, one Observables (of
-  /// derivatives) per material key in `keys` (bound to a UFL Constant; not
-  /// R, H), by central residual differences of relative step 1e-4 (exact for
-  /// parameters entering linearly, O(1e-8) otherwise). Collective.
+  /// derivatives) per key in `keys` (each with a key_difference; throws
+  /// std::logic_error otherwise), by central residual differences of
+  /// relative step 1e-4 (exact for parameters entering linearly, O(1e-8)
+  /// otherwise). Collective.
   std::vector<Observables> sensitivities(std::size_t i, const Config& c,
                                          const std::vector<std::string>& keys);
   /// Solve case `c` and return the skin surface document (surface_export.hpp)
