@@ -31,11 +31,12 @@ UPRIGHT_SET = [("standing", 0.0), ("supine", 90.0), ("all_fours", -90.0), ("lean
 MIN_RATIO_RECLINED = 4.0
 TARGET_MM = {"weak": 1.0, "strong": 3.0, "pair": 2.0}
 
-SETS = ("main", "validation", "holdout", "confirm", "effect", "refine", "tether", "skinvar", "glandform")
+SETS = ("main", "validation", "holdout", "confirm", "effect", "refine", "tether", "skinvar", "glandform",
+        "outside")
 N_CONTROLS = 14
 SHAPES_PER_EFFECT = 3
 # candidate -> truth effect; tether shapes 1, 2 are springs, shape 3 cables
-BY_CANDIDATE = {EFFECTS[n].CANDIDATE: n for n in EFFECTS}
+BY_CANDIDATE = {EFFECTS[n].CANDIDATE: n for n in EFFECTS if EFFECTS[n].CANDIDATE is not None}
 PAIRS = [("base_springs", "gland_core"), ("skin", "suspensory_ligament"),
          ("base_springs", "suspensory_ligament"), ("skin", "gland_core")]
 
@@ -79,7 +80,8 @@ def recordings(which="main"):
     half of them cables, to test the ligaments' cable form out of sample)
     or the skin-variation set ("skinvar", 14) or the gland-form set
     ("glandform", 14: weak glands mostly, to test the gland's lobe form out
-    of sample)."""
+    of sample) or the outside-the-library set ("outside", 43: hidden physics
+    no candidate has, for the field and tissue-law discoveries)."""
     if which == "validation":
         return validation_recordings()
     if which == "holdout":
@@ -96,6 +98,8 @@ def recordings(which="main"):
         return skin_variation_recordings()
     if which == "glandform":
         return gland_form_recordings()
+    if which == "outside":
+        return outside_recordings()
     out = []
     add = _adder(out, 0)
 
@@ -268,6 +272,78 @@ def gland_form_recordings():
     for cand, effect in sorted(BY_CANDIDATE.items()):
         if cand != "gland_core":
             add(f"glf_{cand}_weak_1", "weak", [(effect, _pattern(effect, [67, len(cand), ord(cand[0])], 2))])
+    return out
+
+
+OUTSIDE_OFFSET = 290  # material/posture cycle and seeds 1990+: none shared with the other sets
+# stiff_inclusion: (site, kind, class) of its eight singles: every site with a
+# stiff and a soft region; the strong soft region at the lower pole only (a
+# soft region elsewhere needs a support beyond 50 mm for a 3 mm peak)
+INCLUSIONS = [("lateral_upper", "stiff", "weak"), ("lateral_upper", "soft", "weak"),
+              ("lower_pole", "stiff", "strong"), ("lower_pole", "soft", "strong"),
+              ("medial", "stiff", "strong"), ("medial", "soft", "weak"),
+              ("deep", "stiff", "strong"), ("deep", "soft", "weak")]
+# the other singles: (effect, draw_pattern's argument(s) or None, class); the
+# gradients' sign alternates (each direction stiffer toward either end once)
+OUTSIDE_SINGLES = (
+    [("stiffness_gradient", (d, sign), c) for d, signs in (("base_apex", (1, -1)), ("lateral_medial", (-1, 1)),
+                                                            ("upper_lower", (1, -1)))
+     for c, sign in zip(("weak", "strong"), signs)]
+    + [("strain_stiffening", law, c) for law in ("yeoh", "gent", "demiray") for c in ("weak", "strong")]
+    + [("mooney_rivlin", None, "weak")] * 4
+    + [("sliding_base", None, c) for c in ("weak", "strong", "weak", "strong")])
+# pairs of two families: ((effect, argument), (effect, argument)); an inclusion's
+# arguments are (site, kind)
+OUTSIDE_PAIRS = [
+    (("stiff_inclusion", ("lateral_upper", "stiff")), ("strain_stiffening", "yeoh")),
+    (("stiff_inclusion", ("lower_pole", "soft")), ("sliding_base", None)),
+    (("stiffness_gradient", "base_apex"), ("sliding_base", None)),
+    (("stiffness_gradient", "upper_lower"), ("strain_stiffening", "gent")),
+    (("strain_stiffening", "demiray"), ("sliding_base", None)),
+]
+
+
+def _outside_pattern(effect, arg, seed):
+    rng = np.random.default_rng(seed)
+    mod = EFFECTS[effect]
+    if arg is None:
+        return mod.draw_pattern(rng)
+    if isinstance(arg, tuple):
+        return mod.draw_pattern(rng, *arg)
+    return mod.draw_pattern(rng, arg)
+
+
+def outside_recordings():
+    """10 controls and 33 recordings whose hidden physics is outside the
+    candidate library (forms_truth OUTSIDE_LIBRARY): 28 singles - eight
+    stiff or soft inclusions (INCLUSIONS), six stiffness gradients (three
+    directions, weak and strong), six strain-stiffening laws (Yeoh, Gent,
+    Demiray, weak and strong), four Mooney-Rivlin laws (weak: its effect
+    saturates below 3 mm on stiff truths), four sliding bases (two weak, two
+    strong) - and five pairs of two families (OUTSIDE_PAIRS). The out-of-
+    sample test of the field and tissue-law discoveries: defined before any
+    recording of it was generated, and no candidate has these forms."""
+    out = []
+    add = _adder(out, OUTSIDE_OFFSET)
+    for i in range(1, 11):
+        add(f"out_control_{i:02d}", "control", [])
+    count = {}
+
+    def name(effect, cls):
+        count[(effect, cls)] = count.get((effect, cls), 0) + 1
+        return f"out_{effect}_{cls}_{count[(effect, cls)]}"
+
+    for k, (site, kind, cls) in enumerate(INCLUSIONS, start=1):
+        pattern = _outside_pattern("stiff_inclusion", (site, kind), [71, 1, k])
+        add(name("stiff_inclusion", cls), cls, [("stiff_inclusion", pattern)])
+    for k, (effect, arg, cls) in enumerate(OUTSIDE_SINGLES, start=1):
+        pattern = _outside_pattern(effect, arg, [71, 2, k])
+        add(name(effect, cls), cls, [(effect, pattern)])
+    for k, pair in enumerate(OUTSIDE_PAIRS, start=1):
+        effects = [(e, _outside_pattern(e, arg, [71, 3, k, j])) for j, (e, arg) in enumerate(pair)]
+        add(f"out_pair_{pair[0][0]}__{pair[1][0]}", "pair", effects)
+    names = [r["name"] for r in out]
+    assert len(names) == len(set(names)), "duplicate recording names"
     return out
 
 

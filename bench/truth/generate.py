@@ -38,7 +38,7 @@ sys.path.insert(0, str(HERE))
 import numpy as np  # noqa: E402
 
 import benchmark_set  # noqa: E402
-from forms_truth import EFFECTS  # noqa: E402
+from forms_truth import EFFECTS, physics_of  # noqa: E402
 from geometry import apex_index, build_half_cap  # noqa: E402
 from problem import Problems  # noqa: E402
 from recording_io import make_recording, read_manifest, write_json_atomic  # noqa: E402
@@ -182,7 +182,8 @@ class Generator:
             solved = self.problems.get(2, spec["effects"])
             entry["effects"] = [self._effect_entry(solved, e, strengths[e[0]], info[e[0]])
                                 for e in spec["effects"]]
-            entry["q_equivalent"] = {e["candidate"]: e["q_equivalent"]["value"] for e in entry["effects"]}
+            entry["q_equivalent"] = {e["candidate"]: e["q_equivalent"]["value"] for e in entry["effects"]
+                                     if e["q_equivalent"] is not None}
         else:
             u = u0_2
         postures = self.sample(spec, u)
@@ -202,8 +203,8 @@ class Generator:
 
     def _entry_head(self, spec):
         m = spec["material"]
-        hidden = [EFFECTS[n].CANDIDATE for n, _ in spec["effects"]]
-        return {"name": spec["name"], "file": f"recordings/{spec['name']}.json",
+        hidden = [physics_of(n) for n, _ in spec["effects"]]
+        head = {"name": spec["name"], "file": f"recordings/{spec['name']}.json",
                 "hidden": hidden, "hidden_label": "+".join(hidden) if hidden else "none",
                 "strength_class": spec["strength_class"], "target_peak_mm": spec["target_peak_mm"],
                 "material": {"mu": m["mu"], "lambda": m["lambda"], "lambda_over_mu": m["lambda"] / m["mu"],
@@ -211,15 +212,23 @@ class Generator:
                 "postures": spec["postures"], "seed": spec["seed"], "noise_sigma": NOISE_SIGMA,
                 "points_per_posture": self.points, "truth_mesh": self.mesh_info,
                 "peak_change_mm": 0.0, "effects": [], "q_equivalent": {}}
+        if any(EFFECTS[n].CANDIDATE is None for n, _ in spec["effects"]):
+            # effects outside the candidate library: "hidden" names their families
+            head["hidden_effects"] = [n for n, _ in spec["effects"]]
+            head["outside_library"] = True
+        return head
 
     @staticmethod
     def _effect_entry(problem, effect, s, info):
         name, pattern = effect
         mod = EFFECTS[name]
         term = problem.effects[name]      # pattern set by the last solve
-        return {"model": name, "candidate": mod.CANDIDATE, "pattern": pattern,
-                "strength": {"name": mod.STRENGTH[0], "unit": mod.STRENGTH[1], "value": s},
-                "derived": term.describe(s), "q_equivalent": term.q_equivalent(s), **info}
+        out = {"model": name, "candidate": mod.CANDIDATE, "pattern": pattern,
+               "strength": {"name": mod.STRENGTH[0], "unit": mod.STRENGTH[1], "value": s},
+               "derived": term.describe(s), "q_equivalent": term.q_equivalent(s), **info}
+        if mod.CANDIDATE is None:    # outside the candidate library
+            out.update({"family": mod.FAMILY, "closest_candidate": mod.CLOSEST})
+        return out
 
 
 def generate_with_fallback(gen, spec):
@@ -256,7 +265,7 @@ def main():
         "format": MANIFEST_FORMAT, "generator": "bench/truth/generate.py", "recordings": {}}
     if a.list:
         for s in specs:
-            hidden = "+".join(EFFECTS[n].CANDIDATE for n, _ in s["effects"]) or "none"
+            hidden = "+".join(physics_of(n) for n, _ in s["effects"]) or "none"
             print(f"{s['name']:<40} {s['strength_class']:<8} {hidden:<40} "
                   f"{'done' if status(out, manifest, s) else 'missing'}")
         return 0

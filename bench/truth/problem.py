@@ -34,6 +34,8 @@ class Problem:
         if chest_wall_k is not None:
             terms.append(chest_contact.Term(ctx, chest_wall_k))
         fixed_base = not any(MODULES[n].REPLACES_FIXED_BASE for n in self.effects)
+        if not fixed_base and any(getattr(MODULES[n], "HOLDS_BASE_NORMAL", False) for n in self.effects):
+            fixed_base = "normal"      # the base slides along the chest: u_y = 0 only
         self.model = TruthModel(ctx, self.tissue, self.gravity, terms, fixed_base)
 
     def configure(self, material, effects, strengths):

@@ -3,7 +3,8 @@
 Pi(u) = E_tissue + E_gravity + sum E_effects over P2 displacements with
 
     u_x = 0 on the symmetry face (sliding, docs/MODEL.md),
-    u = 0 on the base unless an effect replaces the fixed base by springs,
+    u = 0 on the base unless an effect replaces the fixed base by springs
+    (or u_y = 0 only, fixed_base = "normal": a base that slides along the chest),
 
 by Newton's method (residual R = dPi/du, Jacobian dR/du, MUMPS via PETSc)
 with a backtracking line search on Pi and a ramp of the gravity load factor
@@ -63,7 +64,11 @@ class TruthModel:
         sym = ctx.facet_tags.find(TAGS["symmetry"])
         dofs_x = fem.locate_dofs_topological(ctx.V.sub(0), fdim, sym)
         bcs = [fem.dirichletbc(PETSc.ScalarType(0), dofs_x, ctx.V.sub(0))]   # u_x = 0
-        if fixed_base:
+        if fixed_base == "normal":                                          # u_y = 0 on the base
+            base = ctx.facet_tags.find(TAGS["base"])
+            dofs_y = fem.locate_dofs_topological(ctx.V.sub(1), fdim, base)
+            bcs.append(fem.dirichletbc(PETSc.ScalarType(0), dofs_y, ctx.V.sub(1)))
+        elif fixed_base:
             base = ctx.facet_tags.find(TAGS["base"])
             dofs = fem.locate_dofs_topological(ctx.V, fdim, base)
             bcs.append(fem.dirichletbc(np.zeros(3, dtype=PETSc.ScalarType), dofs, ctx.V))
