@@ -8,6 +8,7 @@
 #include "candidate_scores.hpp"
 #include "errors.hpp"
 #include "evidence.hpp"
+#include "field_discovery.hpp"
 #include "fit_parameters.hpp"
 #include "fit_state.hpp"
 #include "geometry_options.hpp"
@@ -446,6 +447,12 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   bool accepted = true;
   while (accepted && physics_found(d.discovered) < o.max_rounds)
     accepted = discovery_round(s, d);
+  if (o.discover && o.discover_field)
+  {
+    FieldDiscovery f = discover_field(s.ev, rec, s.frees, s.state, o);
+    f.after.config = on_users_mesh(f.after.config, current);
+    d.field = std::make_shared<const FieldDiscovery>(std::move(f));
+  }
   d.final_fit = s.state;
   d.se_statistical = s.state.uncertainty.se_log;
   // Step 9: the numerical uncertainty of the fitted values.
@@ -474,7 +481,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   d.posture_solves += s.ev.posture_solves();
   set_aside_inseparable(d);
   d.seconds = stopwatch.seconds();
-  d.verdict = verdict_text(d, rec, o.alpha);
+  d.verdict = verdict_text(d, rec, o.alpha) + (d.field ? field_verdict(*d.field, s.state) : "");
   return d;
 }
 } // namespace breastsim::diagnosis

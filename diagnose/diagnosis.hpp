@@ -7,6 +7,7 @@
 #include "recording.hpp"
 #include "uncertainty.hpp"
 #include <array>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -32,6 +33,8 @@ struct DiagnoseOptions
   int order = 0;
   double mesh_size = 0;
   bool discover = true;                ///< false: only fit the current model (calibration)
+  /// Field discovery after the rounds when a misfit remains (field_discovery.hpp).
+  bool discover_field = true;
   int refits = 2;                      ///< significant candidates refitted per round (best LR wins)
   int neighbours = 12;                 ///< k of the neighbourhood means (localisation)
   double region_z = 4.0;               ///< |neighbourhood z| that marks a point as systematic
@@ -189,9 +192,12 @@ struct Round
   std::vector<Rival> rivals;          ///< accepted: other candidates within the separation level
 };
 
+struct FieldDiscovery;
 struct Diagnosis
 {
   std::vector<Round> rounds;
+  /// The stiffness field tried after the rounds (field_discovery.hpp; null: not run).
+  std::shared_ptr<const FieldDiscovery> field;
   FitState final_fit;                 ///< after a discovery: refitted on the finer mesh
   std::vector<double> se_numerical;   ///< numerical part of the SE of ln p (final_fit)
   std::vector<double> se_statistical; ///< statistical SE of ln p of the final fit (noise, chi2/dof)

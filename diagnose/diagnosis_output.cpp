@@ -2,6 +2,8 @@
 #include "diagnosis_output.hpp"
 #include "geometry_options.hpp"
 #include "diagnose.hpp"
+#include "field_discovery.hpp"
+#include "field_term_writer.hpp"
 #include "log.hpp"
 #include "output.hpp"
 #include "output_options.hpp"
@@ -114,6 +116,14 @@ void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const
   }
   write_json(dir / "residuals.json", res, comm);
   write_text(dir / "case.diagnosed.toml", after.config.to_toml(), comm);
+  if (d.field && d.field->accepted)
+  {
+    write_text(dir / "case.field.toml", d.field->after.config.to_toml(), comm);
+    write_text(dir / "found_stiffness.py",
+               field_term_source(*d.field, "found_stiffness",
+                                 std::filesystem::path(rec.source).filename().string()),
+               comm);
+  }
   if (pictures)
     run_viewer_script("diagnose_plots.py", {dir.string()}, "residual maps of " + dir.string(), comm);
   // The final model's skin with |residual| fields: breast pictures and the 3D page.

@@ -2,6 +2,7 @@
 // The diagnosis as JSON and as plain words (diagnosis_report.hpp).
 #include "diagnosis_report.hpp"
 #include "evidence.hpp"
+#include "field_discovery.hpp"
 #include "candidates.hpp"
 #include "separation.hpp"
 #include <algorithm>
@@ -345,6 +346,8 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
     }
     j["rounds"].push_back(q);
   }
+  if (d.field)
+    j["field"] = to_json(*d.field);
   j["final"] = to_json(d.final_fit, rec);
   j["se_log_numerical"] = d.se_numerical;
   j["se_log_statistical"] = d.se_statistical;
@@ -417,6 +420,8 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
       continue;
     s += candidates_text(r, rec);
   }
+  if (d.field)
+    s += field_text(*d.field, rec);
   if (!d.se_numerical.empty())
     s += fmt::format("\nFinal fit on the {} (numerical{} uncertainty included): {}\n",
                      d.final_on_finer_mesh ? "finer check mesh"

@@ -37,9 +37,42 @@ void distance_statistics(FitState& s)
   }
 }
 
+/// The ridge's residual rows at y: sqrt(lambda) y_j, then sqrt(mean_lambda) sum_j m_j y_j.
+std::vector<double> ridge_rows(const std::vector<double>& y, const Ridge& ridge)
+{
+  std::vector<double> r;
+  for (std::size_t j = ridge.first; ridge.lambda > 0 && j < y.size(); ++j)
+    r.push_back(std::sqrt(ridge.lambda) * y[j]);
+  if (!ridge.mean_weights.empty())
+  {
+    double mean = 0;
+    for (std::size_t k = 0; k < ridge.mean_weights.size() && ridge.first + k < y.size(); ++k)
+      mean += ridge.mean_weights[k] * y[ridge.first + k];
+    r.push_back(std::sqrt(ridge.mean_lambda) * mean);
+  }
+  return r;
+}
+
+/// J with the ridge rows' derivatives appended.
+Matrix with_ridge_rows(Matrix J, std::size_t columns, const Ridge& ridge)
+{
+  for (std::size_t j = ridge.first; ridge.lambda > 0 && j < columns; ++j)
+  {
+    J.emplace_back(columns, 0.0);
+    J.back()[j] = std::sqrt(ridge.lambda);
+  }
+  if (!ridge.mean_weights.empty())
+  {
+    J.emplace_back(columns, 0.0);
+    for (std::size_t k = 0; k < ridge.mean_weights.size() && ridge.first + k < columns; ++k)
+      J.back()[ridge.first + k] = std::sqrt(ridge.mean_lambda) * ridge.mean_weights[k];
+  }
+  return J;
+}
+
 FitState make_state(const Config& c, const std::vector<Free>& frees,
                     const std::vector<double>& y, const Matrix& J, const PointEvaluation& e,
-                    int evaluations)
+                    int evaluations, const Ridge& ridge = {})
 {
   FitState s;
   s.config = c;
@@ -60,8 +93,9 @@ FitState make_state(const Config& c, const std::vector<Free>& frees,
     s.values.push_back(std::exp(y[i]));
   }
   if (!frees.empty())
-    s.uncertainty = calibration::gauss_newton_uncertainty(J, y, s.names,
-                                             std::max(1.0, s.chi2 / std::max(s.dof, 1)));
+    s.uncertainty = calibration::gauss_newton_uncertainty(with_ridge_rows(J, frees.size(), ridge), y,
+                                                          s.names,
+                                                          std::max(1.0, s.chi2 / std::max(s.dof, 1)));
   distance_statistics(s);
   return s;
 }
@@ -150,7 +184,8 @@ std::vector<double> start_values(const std::vector<Free>& frees)
 }
 
 FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,
-             const std::vector<double>& y0, const LsqOptions& o, const std::string& label)
+             const std::vector<double>& y0, const LsqOptions& o, const std::string& label,
+             const Ridge& ridge)
 {
   if (frees.empty())
   {
@@ -163,7 +198,15 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
     lo.push_back(std::log(f.lo));
     hi.push_back(std::log(f.hi));
   }
-  auto f = [&](const std::vector<double>& y) { return ev(config_at(base, frees, y)).r; };
+  std::size_t data_rows = 0;
+  auto f = [&](const std::vector<double>& y) // r, then the ridge's rows
+  {
+    auto r = ev(config_at(base, frees, y)).r;
+    data_rows = r.size();
+    const auto extra = ridge_rows(y, ridge);
+    r.insert(r.end(), extra.begin(), extra.end());
+    return r;
+  };
   auto progress = [&](int it, double chi2, const std::vector<double>& y)
   {
     std::string p;
@@ -172,13 +215,18 @@ FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& fr
     log::info("{}: iteration {}, chi2 = {:.1f}, {}", label, it, chi2, p);
   };
   auto jacobian = [&](const std::vector<double>& y, const std::vector<double>& r, int& evaluations)
-  { return fit_jacobian(ev, base, frees, y, r, o.fd_step, evaluations); };
+  {
+    const std::vector<double> data(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(data_rows));
+    return with_ridge_rows(fit_jacobian(ev, base, frees, y, data, o.fd_step, evaluations), y.size(),
+                           ridge);
+  };
   const calibration::LsqResult r =
       calibration::levenberg_marquardt(f, y0, lo, hi, o, progress, jacobian);
   log::info("{}: {} ({} evaluations)", label, r.stop_reason, r.evaluations);
   const Config c = config_at(base, frees, r.y);
   const PointEvaluation e = ev(c);
-  return make_state(c, frees, r.y, r.J, e, r.evaluations + 1);
+  const Matrix J_data(r.J.begin(), r.J.begin() + static_cast<std::ptrdiff_t>(e.r.size()));
+  return make_state(c, frees, r.y, J_data, e, r.evaluations + 1, ridge);
 }
 
 std::optional<FitState> gauss_newton_refit(const Evaluate& ev, const Config& base,

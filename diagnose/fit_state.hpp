@@ -42,10 +42,23 @@ std::vector<double> start_values(const std::vector<Free>& frees);
 Matrix fit_jacobian(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,
                     const std::vector<double>& y, const std::vector<double>& r, double fd_step,
                     int& evaluations);
+/// A ridge penalty on the free parameters from `first` on: lambda y_j^2
+/// added to chi2 (sqrt(lambda) y_j as extra residual rows), and with
+/// `mean_weights` m a zero-mean penalty mean_lambda (sum_j m_j y_j)^2 (one row).
+struct Ridge
+{
+  std::size_t first = 0;
+  double lambda = 0;
+  std::vector<double> mean_weights;
+  double mean_lambda = 0;
+};
 /// Fit `frees` of `base` from y0; the state at the optimum (no frees: the
-/// state of `base`). Throws SolveError.
+/// state of `base`). With a ridge, the fit minimises chi2 + lambda sum y_j^2
+/// and the state's chi2, r and J are the data's; its uncertainty is the
+/// penalised one, Cov = (J^T J + lambda D)^-1. Throws SolveError.
 FitState fit(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,
-             const std::vector<double>& y0, const LsqOptions& o, const std::string& label);
+             const std::vector<double>& y0, const LsqOptions& o, const std::string& label,
+             const Ridge& ridge = {});
 /// The fit of `frees` of `base` (e.g. the same model on a finer mesh)
 /// from a nearby fit `from` of the same parameters: Gauss-Newton (chord)
 /// steps with from's Jacobian,

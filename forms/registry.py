@@ -17,6 +17,7 @@ TERMS = [
     "suspensory_cables",
     "gland_core",
     "gland_lobe",
+    "tissue_field",
     "tissue_suture",
     "chest_wall",
 ]

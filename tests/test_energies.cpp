@@ -267,5 +267,44 @@ TEST_P(Energies, GlandLobe)
   EXPECT_EQ(m->energy("gland_lobe"), 0.0);
 }
 
+TEST_P(Energies, TissueField)
+{
+  // Homogeneous F0. (a) Basis functions wider than the body by 1e3: s is
+  // the constant sum of the amplitudes (to 1e-6), so
+  //   E_field = (exp(a_1 + a_2) - 1) E_tissue.
+  // (b) One Gaussian of width w centred on the symmetry plane deep inside
+  // the cap: over the half space x > 0,
+  //   int (exp(a exp(-r^2 / 2 w^2)) - 1) dV = 1/2 sum_n a^n / n! (2 pi w^2 / n)^(3/2);
+  // the quadrature resolves the bump on this mesh to a few per cent.
+  const std::array<double, 9> F0 = {1.05, 0.02, 0.0, 0.0, 0.97, 0.01, 0.0, 0.0, 1.02};
+  set_homogeneous(*m, F0);
+  const double mu = 500, lmbda = 6000;
+  m->set_parameter("mu", {mu});
+  m->set_parameter("lmbda", {lmbda});
+  std::vector<double> a(24, 0.0), centres(72, 0.0);
+  a[0] = 0.4;
+  a[1] = -0.1;
+  m->set_parameter("a_field", a);
+  m->set_parameter("c_field", centres);
+  m->set_parameter("w_field", {100.0});
+  EXPECT_NEAR(m->energy("tissue_field") / m->energy("tissue"), std::exp(0.3) - 1, 1e-6);
+
+  const double w = 0.008, a1 = 0.7;
+  a.assign(24, 0.0);
+  a[0] = a1;
+  centres[1] = 0.025; // (0, 25 mm, 0)
+  m->set_parameter("a_field", a);
+  m->set_parameter("c_field", centres);
+  m->set_parameter("w_field", {w});
+  double integral = 0, term = 1;
+  for (int n = 1; n < 30; ++n)
+  {
+    term *= a1 / n;
+    integral += 0.5 * term * std::pow(2 * M_PI * w * w / n, 1.5);
+  }
+  const double W = neo_hooke_density(F0, mu, lmbda);
+  EXPECT_NEAR(m->energy("tissue_field") / (W * integral), 1.0, 0.05);
+}
+
 INSTANTIATE_TEST_SUITE_P(Orders, Energies, ::testing::Values(1, 2),
                          [](const auto& info) { return "P" + std::to_string(info.param); });

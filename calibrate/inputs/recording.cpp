@@ -82,6 +82,7 @@ Recording parse_recording(const nlohmann::json& j, const std::string& source)
     rd.fail("units", fmt::format("= {} is not allowed: recordings are in metres (\"m\")",
                                  j.at("units").dump()));
   Recording r;
+  r.source = source;
   r.noise_sigma = rd.number(rd.require(j, "noise_sigma", ""), "noise_sigma", 1e-7, 0.02, "m");
   if (j.contains("known"))
   {

@@ -29,6 +29,7 @@ struct Recording
   double noise_sigma = 0;                 ///< standard deviation of each coordinate [m]
   std::map<std::string, double> known;    ///< a-priori values: R, H, rho
   std::vector<RecordedPosture> postures;
+  std::string source;                     ///< where it was read from (messages, reports)
   /// Ground truth of synthetic recordings (never read by the diagnosis).
   nlohmann::json truth;
 };
