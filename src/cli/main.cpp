@@ -225,6 +225,11 @@ int main(int argc, char** argv)
   }
   // Run alone (not under mpirun), OpenMPI needs no helper daemon (orted).
   setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+  // OpenMPI's ob1 messaging (shared memory, TCP) instead of probing UCX:
+  // start-up 0.45 -> 0.23 s on one machine. Every rank sets the same, and a
+  // value already in the environment (e.g. pml ucx on an InfiniBand
+  // cluster) is kept.
+  setenv("OMPI_MCA_pml", "ob1", 0);
   if (!petsc_ok([] { PETSC_CHECK(PetscInitializeNoArguments()); }))
     return 1;
   // PETSc's handlers would turn SIGPIPE and friends into an MPI abort (exit
