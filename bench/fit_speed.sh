@@ -9,12 +9,13 @@
 # fitted values).
 # Usage: bash bench/fit_speed.sh OLD NEW [REPEATS] [RECORDING...]
 #   (default REPEATS 3; RECORDING: names in bench/truth/manifest.json, default
-#   control_01 skin_weak_2, the ctest truth_diagnose's pair)
+#   control_01 skin_weak_2, the ctest truth_diagnose's pair; "none": calibrate only)
 set -euo pipefail
 OLD="$(readlink -f "$1")"; NEW="$(readlink -f "$2")"; REPEATS="${3:-3}"; shift $(( $# < 3 ? $# : 3 ))
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 RECS=("$@")
 [ ${#RECS[@]} -gt 0 ] || RECS=(control_01 skin_weak_2)
+[ "${RECS[0]}" != none ] || RECS=()
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 wall() { local s e; s=$(date +%s.%N); "$@" >/dev/null 2>&1; e=$(date +%s.%N); echo "$e - $s" | bc; }
@@ -41,6 +42,7 @@ for k, v in values(old).items():
 print(f"  evaluations: old {old['evaluations']}, new {new['evaluations']}")
 PY
 
+[ ${#RECS[@]} -gt 0 ] || exit 0
 # diagnose: bench/truth/run_diagnose.py (the benchmark's own options) with each binary in turn.
 names=$(IFS=,; echo "${RECS[*]}")
 for i in $(seq "$REPEATS"); do
