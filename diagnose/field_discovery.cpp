@@ -192,6 +192,7 @@ nlohmann::json to_json(const FieldDiscovery& f)
   nlohmann::json j;
   j["tried"] = f.tried;
   j["accepted"] = f.accepted;
+  j["family"] = "tissue_field"; // the physics it names (forms/tissue_field.py)
   j["skipped"] = f.skipped;
   j["failed"] = f.failed;
   if (!f.tried)

@@ -33,6 +33,7 @@ import argparse
 import concurrent.futures
 import functools
 import json
+import math
 import os
 import shlex
 import statistics
@@ -149,7 +150,52 @@ def read_result(out, entry, record=None):
     params = {p["name"]: p for p in dia.get("final", {}).get("parameters", [])}
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
     row["coverage"] = coverage_rows(entry, row["named"], params, pseudo_true_of_named(record, forms), forms)
+    row["field"] = field_row(dia.get("field"), entry)
+    if row["field"] and row["field"]["accepted"]:  # a modelled field names its physics family
+        row["named"] = sorted(set(row["named"]) | {row["field"]["family"]})
     return row
+
+
+def truth_centre(entry):
+    """The centre [m] of a localised hidden effect (the manifest's derived
+    centre_m of the first effect that has one), or None."""
+    for e in entry.get("effects", []):
+        c = (e.get("derived") or {}).get("centre_m")
+        if c is not None:
+            return c
+    return None
+
+
+def field_row(field, entry):
+    """The diagnosis' stiffness field (docs/DISCOVERY.md): whether it was
+    tried and accepted, chi2/dof before and after, and for a localised
+    hidden effect the distance [mm] from its centre to the field's centroid."""
+    if not field or not field.get("tried"):
+        return None
+    row = {"accepted": bool(field.get("accepted")), "family": field.get("family", "tissue_field"),
+           "failed": field.get("failed", [])}
+    if "chi2_after" in field and field.get("dof_after"):
+        dof = field["dof_after"]
+        row["chi2_dof_before"] = (field["chi2_after"] + field.get("likelihood_ratio", 0.0)) / dof
+        row["chi2_dof_after"] = field["chi2_after"] / dof
+    centre, summary = truth_centre(entry), field.get("summary") or {}
+    if centre is not None and summary.get("centroid_m") is not None:
+        row["location_error_mm"] = 1e3 * math.dist(centre, summary["centroid_m"])
+    return row
+
+
+def field_summary(done):
+    """Over the rows whose diagnosis tried a field: how many it modelled,
+    the localisation error of the modelled ones (median, largest) and their
+    chi2/dof before and after (median)."""
+    tried = [r["field"] for r in done if r.get("field")]
+    kept = [f for f in tried if f["accepted"]]
+    loc = [f["location_error_mm"] for f in kept if "location_error_mm" in f]
+    med = lambda v: statistics.median(v) if v else None
+    return {"tried": len(tried), "modelled": len(kept),
+            "location_error_mm": {"median": med(loc), "max": max(loc) if loc else None, "of": len(loc)},
+            "chi2_dof_before": med([f["chi2_dof_before"] for f in kept if "chi2_dof_before" in f]),
+            "chi2_dof_after": med([f["chi2_dof_after"] for f in kept if "chi2_dof_after" in f])}
 
 
 def truth_forms(entry):
@@ -332,6 +378,7 @@ def summarize(rows):
                                "pseudo_true_inside": sum(c["inside_reference"] for c in cov_pseudo),
                                "pseudo_true_of": len(cov_pseudo)},
         "forms": form_tally(done),
+        "field": field_summary(done),
         "seconds": {"median": statistics.median(times) if times else None,
                     "min": min(times) if times else None, "max": max(times) if times else None},
     }
@@ -349,12 +396,24 @@ def fmt(x, spec=".3g"):
     return "-" if x is None else format(x, spec)
 
 
+def field_lines(fs):
+    """The stiffness field's line of the summary (none if no diagnosis tried one)."""
+    if not fs or not fs["tried"]:
+        return []
+    loc = fs["location_error_mm"]
+    return [f"- stiffness field (docs/DISCOVERY.md): modelled in {fs['modelled']} of {fs['tried']} diagnoses "
+            f"that tried one; chi2/dof median {fmt(fs['chi2_dof_before'], '.3f')} -> "
+            f"{fmt(fs['chi2_dof_after'], '.3f')}; centroid to the truth's centre: median "
+            f"{fmt(loc['median'], '.1f')} mm, largest {fmt(loc['max'], '.1f')} mm (of {loc['of']})"]
+
+
 def markdown(s, rows, command):
     out = [f"Command: `{command}`", "",
            "Each diagnosis: `breastsim -q diagnose REC --case CASE "
            + " ".join(f"--set {x}" for x in BASELINE_SETS) + " " + " ".join(DISCRETISATION)
            + f" --fit {FIT} --out ... [EXTRA]`", ""]
-    cols = CANDIDATES + ["none"]
+    seen = {c for counts in s["confusion"].values() for c in counts}
+    cols = CANDIDATES + sorted(seen - set(CANDIDATES) - {"none"}) + ["none"]  # + families outside the library
     out += ["| hidden \\ named | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
     for lab, counts in s["confusion"].items():
         out.append(f"| {lab} | " + " | ".join(str(counts.get(c, 0)) for c in cols) + " |")
@@ -384,6 +443,7 @@ def markdown(s, rows, command):
                f"{form_counts['truth_form_known']})" if form_counts.get("truth_form_known") else ""),
             f"- time per diagnosis: median {fmt(t['median'], '.1f')} s (min {fmt(t['min'], '.1f')}, "
             f"max {fmt(t['max'], '.1f')})",
+            *field_lines(s.get("field")),
             f"- not scored (failed or not run): {', '.join(s['failed_or_missing']) or 'none'}",
             "", "| recording | class | hidden | peak [mm] | named | q equivalent | q pseudo-true | "
             "fitted [95 % interval] | s |",

@@ -27,8 +27,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve() / "bench" / "truth"))
 
-from run_diagnose import (CANDIDATES, coverage_rows, family_of_form, form_tally, forms_of,  # noqa: E402
-                          main as run_diagnose_main, pseudo_true_of_named, truth_forms)
+from run_diagnose import (CANDIDATES, coverage_rows, family_of_form, field_lines, field_row,  # noqa: E402
+                          field_summary, form_tally, forms_of, main as run_diagnose_main,
+                          pseudo_true_of_named, truth_forms)
 
 # a fake breastsim: checks the command line and writes the answer of answers.json for the recording
 FAKE_BINARY = r'''#!/usr/bin/env python3
@@ -164,6 +165,19 @@ def main():
     if (family.get("suspensory_cables") != "suspensory_ligament" or family.get("skin_upper_pole") != "skin"
             or not set(family.values()) <= set(CANDIDATES)):
         bad["family of form"] = family
+    # the stiffness field: its row (location error, chi2/dof) and the summary over rows
+    entry = {"effects": [{"derived": {"centre_m": [0.02, 0.015, -0.03]}}]}
+    field = {"tried": True, "accepted": True, "family": "tissue_field", "likelihood_ratio": 400.0,
+             "chi2_after": 1000.0, "dof_after": 1000, "summary": {"centroid_m": [0.023, 0.019, -0.03]}}
+    fr = field_row(field, entry)
+    if (abs(fr["location_error_mm"] - 5.0) > 1e-9 or abs(fr["chi2_dof_before"] - 1.4) > 1e-12
+            or fr["chi2_dof_after"] != 1.0 or field_row({"tried": False}, entry) is not None):
+        bad["field row"] = fr
+    rejected = field_row({"tried": True, "accepted": False, "failed": ["LR"]}, {})
+    fs = field_summary([{"field": fr}, {"field": rejected}, {"field": None}])
+    if (fs["tried"], fs["modelled"], fs["location_error_mm"]["of"], fs["chi2_dof_after"]) != (2, 1, 1, 1.0) \
+            or "modelled in 1 of 2" not in field_lines(fs)[0] or field_lines({"tried": 0}) != []:
+        bad["field summary"] = fs
     if bad:
         print(f"test_run_diagnose: FAILED: {bad}")
         return 1
