@@ -131,12 +131,14 @@ def rescore(runs):
 
 def benchmark_runs(path, root=HERE):
     """[(manifest, summary)] of every set of the benchmark list `path`:
-    {"folder": F, "runs": {SET_FOLDER: SUMMARY}}, paths relative to root
-    (bench/truth); every manifest.json under F must have a run."""
+    {"folder": F, "runs": {SET_FOLDER: SUMMARY}, "apart": {SET_FOLDER: WHY}},
+    paths relative to root (bench/truth); every manifest.json under F must
+    have a run, or be scored apart (a set with its own list, e.g. physics
+    outside the candidate library)."""
     spec = json.loads(Path(path).read_text())
     folder = root / spec["folder"]
     sets = sorted(str(m.parent.relative_to(root)) for m in folder.rglob("manifest.json"))
-    missing = [s for s in sets if s not in spec["runs"]]
+    missing = [s for s in sets if s not in spec["runs"] and s not in spec.get("apart", {})]
     if missing:
         sys.exit(f"rescore.py: {path} has no run of the set(s) {', '.join(missing)}: the benchmark is every set")
     runs = []

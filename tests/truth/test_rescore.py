@@ -89,6 +89,9 @@ def benchmark_list(d, pooled):
         raise AssertionError("a list that leaves a set out was accepted")
     except SystemExit as e:
         assert "no run of the set(s) other" in str(e), e
+    (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md"},
+                                             "apart": {"other": "scored by its own list"}}))
+    assert benchmark_runs(d / "list.json", root=d) == [(d / "manifest.json", d / "summary.md")]
     (d / "list.json").write_text(json.dumps({"folder": ".", "runs": {".": "summary.md", "other": "other/summary.md"}}))
     assert benchmark_runs(d / "list.json", root=d) == [(d / "manifest.json", d / "summary.md"),
                                                       (pooled / "manifest.json", pooled / "summary.md")]
