@@ -20,6 +20,18 @@ double boundary_lr_critical(double level)
   return 0.5 * (lo + hi);
 }
 
+double chi2_critical(double k, double alpha)
+{
+  double lo = -10, hi = 10; // z with P(N(0, 1) > z) = alpha, by bisection
+  for (int i = 0; i < 100; ++i)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (normal_tail(mid) > alpha ? lo : hi) = mid;
+  }
+  const double z = 0.5 * (lo + hi), v = 2 / (9 * k);
+  return k * std::pow(1 - v + z * std::sqrt(v), 3); // k (1 - 2/9k + z sqrt(2/9k))^3
+}
+
 std::vector<double> project_out(const Matrix& J, const std::vector<double>& j)
 {
   const std::size_t n = J.empty() ? 0 : J[0].size();

@@ -13,6 +13,9 @@ namespace breastsim::diagnosis
 /// Critical value x of the boundary-corrected LR test: 0.5 P(chi2_1 > x) = level.
 double boundary_lr_critical(double level);
 
+/// x with P(chi2_k > x) = alpha (Wilson-Hilferty; k >= 1).
+double chi2_critical(double k, double alpha);
+
 /// Projected sensitivity P j with P = I - J (J^T J)^-1 J^T.
 std::vector<double> project_out(const Matrix& J, const std::vector<double>& j);
 

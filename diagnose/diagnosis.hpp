@@ -35,6 +35,8 @@ struct DiagnoseOptions
   bool discover = true;                ///< false: only fit the current model (calibration)
   /// Field discovery after the rounds when a misfit remains (field_discovery.hpp).
   bool discover_field = true;
+  /// Law discovery after the rounds when a misfit remains (law_discovery.hpp).
+  bool discover_law = true;
   int refits = 2;                      ///< significant candidates refitted per round (best LR wins)
   int neighbours = 12;                 ///< k of the neighbourhood means (localisation)
   double region_z = 4.0;               ///< |neighbourhood z| that marks a point as systematic
@@ -193,11 +195,14 @@ struct Round
 };
 
 struct FieldDiscovery;
+struct LawDiscovery;
 struct Diagnosis
 {
   std::vector<Round> rounds;
   /// The stiffness field tried after the rounds (field_discovery.hpp; null: not run).
   std::shared_ptr<const FieldDiscovery> field;
+  /// The tissue law tried after the rounds (law_discovery.hpp; null: not run).
+  std::shared_ptr<const LawDiscovery> law;
   FitState final_fit;                 ///< after a discovery: refitted on the finer mesh
   std::vector<double> se_numerical;   ///< numerical part of the SE of ln p (final_fit)
   std::vector<double> se_statistical; ///< statistical SE of ln p of the final fit (noise, chi2/dof)

@@ -4,6 +4,7 @@
 #include "diagnose.hpp"
 #include "field_discovery.hpp"
 #include "field_term_writer.hpp"
+#include "law_discovery.hpp"
 #include "log.hpp"
 #include "output.hpp"
 #include "output_options.hpp"
@@ -122,6 +123,13 @@ void write_diagnosis(const std::filesystem::path& dir, const Diagnosis& d, const
     write_text(dir / "found_stiffness.py",
                field_term_source(*d.field, "found_stiffness",
                                  std::filesystem::path(rec.source).filename().string()),
+               comm);
+  }
+  if (d.law && d.law->accepted)
+  {
+    write_text(dir / "case.law.toml", d.law->after.config.to_toml(), comm);
+    write_text(dir / "found_law.py",
+               law_term_source(*d.law, "found_law", std::filesystem::path(rec.source).filename().string()),
                comm);
   }
   if (pictures)

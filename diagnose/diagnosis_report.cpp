@@ -3,6 +3,7 @@
 #include "diagnosis_report.hpp"
 #include "evidence.hpp"
 #include "field_discovery.hpp"
+#include "law_discovery.hpp"
 #include "candidates.hpp"
 #include "separation.hpp"
 #include <algorithm>
@@ -348,6 +349,8 @@ nlohmann::json to_json(const Diagnosis& d, const Recording& rec)
   }
   if (d.field)
     j["field"] = to_json(*d.field);
+  if (d.law)
+    j["law"] = to_json(*d.law);
   j["final"] = to_json(d.final_fit, rec);
   j["se_log_numerical"] = d.se_numerical;
   j["se_log_statistical"] = d.se_statistical;
@@ -422,6 +425,8 @@ std::string report_text(const Diagnosis& d, const Recording& rec)
   }
   if (d.field)
     s += field_text(*d.field, rec);
+  if (d.law)
+    s += law_text(*d.law, rec);
   if (!d.se_numerical.empty())
     s += fmt::format("\nFinal fit on the {} (numerical{} uncertainty included): {}\n",
                      d.final_on_finer_mesh ? "finer check mesh"

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "field_discovery.hpp"
+#include "candidate_scores.hpp"
 #include "errors.hpp"
 #include "evidence.hpp"
 #include "geometry_options.hpp"
@@ -27,19 +28,6 @@ Free amplitude(std::size_t k)
             c.set("tissue_field.amplitudes", a);
           },
           1.0};
-}
-
-/// x with P(chi2_k > x) = alpha (Wilson-Hilferty; k >= 1).
-double chi2_critical(double k, double alpha)
-{
-  double lo = -10, hi = 10; // z with P(N(0, 1) > z) = alpha, by bisection
-  for (int i = 0; i < 100; ++i)
-  {
-    const double mid = 0.5 * (lo + hi);
-    (normal_tail(mid) > alpha ? lo : hi) = mid;
-  }
-  const double z = 0.5 * (lo + hi), v = 2 / (9 * k);
-  return k * std::pow(1 - v + z * std::sqrt(v), 3); // k (1 - 2/9k + z sqrt(2/9k))^3
 }
 
 /// The columns [first, first + n) of J.

@@ -18,6 +18,7 @@ TERMS = [
     "gland_core",
     "gland_lobe",
     "tissue_field",
+    "tissue_law",
     "tissue_suture",
     "chest_wall",
 ]

@@ -306,5 +306,32 @@ TEST_P(Energies, TissueField)
   EXPECT_NEAR(m->energy("tissue_field") / (W * integral), 1.0, 0.05);
 }
 
+TEST_P(Energies, TissueLaw)
+{
+  // Homogeneous F0: E = V sum_k b_k f_k(F0), and E_tissue = V W(F0), so
+  // E_law / E_tissue = sum_k b_k f_k / W with I1b = J^(-2/3) tr C,
+  // I2b = J^(-4/3) (tr(C)^2 - tr(C^2)) / 2.
+  const std::array<double, 9> F0 = {1.1, 0.05, 0.0, 0.0, 0.92, 0.03, 0.02, 0.0, 1.04};
+  set_homogeneous(*m, F0);
+  const double mu = 500, lmbda = 6000;
+  m->set_parameter("mu", {mu});
+  m->set_parameter("lmbda", {lmbda});
+  const std::vector<double> b = {300, 80, 40};
+  m->set_parameter("b_law", b);
+  double C[9] = {}; // C = F^T F
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        C[3 * i + j] += F0[3 * k + i] * F0[3 * k + j];
+  double trC = C[0] + C[4] + C[8], trC2 = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      trC2 += C[3 * i + j] * C[3 * j + i];
+  const double J = det3(F0), i1 = std::pow(J, -2.0 / 3) * trC - 3,
+               i2 = std::pow(J, -4.0 / 3) * (trC * trC - trC2) / 2 - 3;
+  const double law = b[0] * i1 * i1 + b[1] * i1 * i1 * i1 + b[2] * i2;
+  EXPECT_NEAR(m->energy("tissue_law") / m->energy("tissue"), law / neo_hooke_density(F0, mu, lmbda), 1e-9);
+}
+
 INSTANTIATE_TEST_SUITE_P(Orders, Energies, ::testing::Values(1, 2),
                          [](const auto& info) { return "P" + std::to_string(info.param); });

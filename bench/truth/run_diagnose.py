@@ -151,8 +151,10 @@ def read_result(out, entry, record=None):
     row["fitted"] = {k: p.get("value") for k, p in params.items()}
     row["coverage"] = coverage_rows(entry, row["named"], params, pseudo_true_of_named(record, forms), forms)
     row["field"] = field_row(dia.get("field"), entry)
-    if row["field"] and row["field"]["accepted"]:  # a modelled field names its physics family
-        row["named"] = sorted(set(row["named"]) | {row["field"]["family"]})
+    row["law"] = field_row(dia.get("law"), entry)
+    for built in (row["field"], row["law"]):  # a modelled field or law names its physics family
+        if built and built["accepted"]:
+            row["named"] = sorted(set(row["named"]) | {built["family"]})
     return row
 
 
@@ -167,9 +169,10 @@ def truth_centre(entry):
 
 
 def field_row(field, entry):
-    """The diagnosis' stiffness field (docs/DISCOVERY.md): whether it was
-    tried and accepted, chi2/dof before and after, and for a localised
-    hidden effect the distance [mm] from its centre to the field's centroid."""
+    """The diagnosis' stiffness field or tissue law (docs/DISCOVERY.md):
+    whether it was tried and accepted, chi2/dof before and after, and for a
+    field and a localised hidden effect the distance [mm] from its centre to
+    the field's centroid."""
     if not field or not field.get("tried"):
         return None
     row = {"accepted": bool(field.get("accepted")), "family": field.get("family", "tissue_field"),
@@ -184,11 +187,11 @@ def field_row(field, entry):
     return row
 
 
-def field_summary(done):
-    """Over the rows whose diagnosis tried a field: how many it modelled,
-    the localisation error of the modelled ones (median, largest) and their
-    chi2/dof before and after (median)."""
-    tried = [r["field"] for r in done if r.get("field")]
+def field_summary(done, key="field"):
+    """Over the rows whose diagnosis tried a field (key "field") or a law
+    ("law"): how many it modelled, the localisation error of the modelled
+    ones (median, largest) and their chi2/dof before and after (median)."""
+    tried = [r[key] for r in done if r.get(key)]
     kept = [f for f in tried if f["accepted"]]
     loc = [f["location_error_mm"] for f in kept if "location_error_mm" in f]
     med = lambda v: statistics.median(v) if v else None
@@ -379,6 +382,7 @@ def summarize(rows):
                                "pseudo_true_of": len(cov_pseudo)},
         "forms": form_tally(done),
         "field": field_summary(done),
+        "law": field_summary(done, "law"),
         "seconds": {"median": statistics.median(times) if times else None,
                     "min": min(times) if times else None, "max": max(times) if times else None},
     }
@@ -396,15 +400,17 @@ def fmt(x, spec=".3g"):
     return "-" if x is None else format(x, spec)
 
 
-def field_lines(fs):
-    """The stiffness field's line of the summary (none if no diagnosis tried one)."""
+def field_lines(fs, what="stiffness field"):
+    """The summary's line of the stiffness field or the tissue law (none if
+    no diagnosis tried one)."""
     if not fs or not fs["tried"]:
         return []
     loc = fs["location_error_mm"]
-    return [f"- stiffness field (docs/DISCOVERY.md): modelled in {fs['modelled']} of {fs['tried']} diagnoses "
+    where = (f"; centroid to the truth's centre: median {fmt(loc['median'], '.1f')} mm, largest "
+             f"{fmt(loc['max'], '.1f')} mm (of {loc['of']})" if loc["of"] else "")
+    return [f"- {what} (docs/DISCOVERY.md): modelled in {fs['modelled']} of {fs['tried']} diagnoses "
             f"that tried one; chi2/dof median {fmt(fs['chi2_dof_before'], '.3f')} -> "
-            f"{fmt(fs['chi2_dof_after'], '.3f')}; centroid to the truth's centre: median "
-            f"{fmt(loc['median'], '.1f')} mm, largest {fmt(loc['max'], '.1f')} mm (of {loc['of']})"]
+            f"{fmt(fs['chi2_dof_after'], '.3f')}{where}"]
 
 
 def markdown(s, rows, command):
@@ -444,6 +450,7 @@ def markdown(s, rows, command):
             f"- time per diagnosis: median {fmt(t['median'], '.1f')} s (min {fmt(t['min'], '.1f')}, "
             f"max {fmt(t['max'], '.1f')})",
             *field_lines(s.get("field")),
+            *field_lines(s.get("law"), "tissue law"),
             f"- not scored (failed or not run): {', '.join(s['failed_or_missing']) or 'none'}",
             "", "| recording | class | hidden | peak [mm] | named | q equivalent | q pseudo-true | "
             "fitted [95 % interval] | s |",

@@ -93,6 +93,8 @@ Command add_diagnose_command(CLI::App& root)
                   "continuum with this order (0: off)")->capture_default_str();
   app->add_flag("!--no-field", o->d.discover_field,
                 "do not model a misfit the candidates leave as a stiffness field");
+  app->add_flag("!--no-law", o->d.discover_law,
+                "do not model a misfit the candidates leave by the tissue law's invariant features");
   app->add_flag("!--no-held-out", o->d.held_out_check,
                 "do not require a gain in the prediction of held-out postures");
   app->add_option("--ranks-per-case", o->d.ranks_per_case,
