@@ -10,6 +10,7 @@
 #include "evidence.hpp"
 #include "field_discovery.hpp"
 #include "law_discovery.hpp"
+#include "missing_physics.hpp"
 #include "fit_parameters.hpp"
 #include "fit_state.hpp"
 #include "geometry_options.hpp"
@@ -419,42 +420,6 @@ bool discovery_round(Search& s, Diagnosis& d)
   return true;
 }
 
-/// After the rounds, when a misfit remains: a stiffness field and a tissue
-/// law, each tried on the rounds' fit (docs/DISCOVERY.md). When both hold
-/// their rules, the one that gains more on the held-out postures models
-/// the rest; the other is rejected with that reason.
-void construct_missing_physics(Search& s, Diagnosis& d, const Config& current)
-{
-  if (!s.o.discover)
-    return;
-  std::optional<FieldDiscovery> f;
-  std::optional<LawDiscovery> l;
-  if (s.o.discover_field)
-    f = discover_field(s.ev, s.rec, s.frees, s.state, s.o);
-  if (s.o.discover_law)
-    l = discover_law(s.ev, s.rec, s.frees, s.state, s.o);
-  if (f && l && f->accepted && l->accepted)
-  {
-    const bool field_wins = f->ridge.total_gain >= l->choice.total_gain;
-    auto& loser = field_wins ? l->failed : f->failed;
-    loser.push_back(fmt::format("the {} explains the held-out postures better (gain {:.1f} against {:.1f})",
-                                field_wins ? "stiffness field" : "tissue law",
-                                std::max(f->ridge.total_gain, l->choice.total_gain),
-                                std::min(f->ridge.total_gain, l->choice.total_gain)));
-    (field_wins ? l->accepted : f->accepted) = false;
-  }
-  if (f)
-  {
-    f->after.config = on_users_mesh(f->after.config, current);
-    d.field = std::make_shared<const FieldDiscovery>(std::move(*f));
-  }
-  if (l)
-  {
-    l->after.config = on_users_mesh(l->after.config, current);
-    d.law = std::make_shared<const LawDiscovery>(std::move(*l));
-  }
-}
-
 /// The final model refitted on the finer mesh: a full fit for a calibration
 /// (fit only), else Gauss-Newton steps from the diagnosis mesh's fit.
 FitState final_fit_on_finer_mesh(Search& s, bool fit_only)
@@ -484,7 +449,7 @@ Diagnosis diagnose(const Recording& rec, const Config& current, const DiagnoseOp
   bool accepted = true;
   while (accepted && physics_found(d.discovered) < o.max_rounds)
     accepted = discovery_round(s, d);
-  construct_missing_physics(s, d, current);
+  construct_missing_physics(s.ev, rec, s.frees, s.state, o, current, d);
   d.final_fit = s.state;
   d.se_statistical = s.state.uncertainty.se_log;
   // Step 9: the numerical uncertainty of the fitted values.
