@@ -30,8 +30,9 @@ LAYERS = {
     "calibrate/inputs": ["src/solver", "src/io"], "calibrate/plots": ["src/solver", "src/io"],
     "calibrate/forward": ["calibrate/inputs"], "calibrate/fit": ["calibrate/forward", "calibrate/plots"],
     "diagnose": ["calibrate/fit"],
-    "src/app": ["src/jobs", "diagnose"], "src/cli": ["src/app", "src/jobs", "diagnose"],
-    "tests": ["src/app", "src/jobs", "diagnose"],
+    "src/clinic": ["src/jobs", "calibrate/fit"],
+    "src/app": ["src/jobs", "diagnose", "src/clinic"], "src/cli": ["src/app", "src/jobs", "diagnose", "src/clinic"],
+    "tests": ["src/app", "src/jobs", "diagnose", "src/clinic"],
 }
 ROOTS = ("src", "calibrate", "diagnose", "verification", "tests")
 SKIP = {"node_modules"}

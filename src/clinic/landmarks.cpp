@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#include "landmarks.hpp"
+#include "errors.hpp"
+#include "json_file.hpp"
+#include "strings.hpp"
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace breastsim::clinic
+{
+const std::vector<LandmarkRange>& landmark_ranges()
+{
+  static const std::vector<LandmarkRange> r = {
+      {"sn_n", 0.15, 0.45, "breasts seen for reduction: about 19-21 cm is youthful, 45 cm is beyond the longest reported"},
+      {"n_imf", 0.03, 0.25, "3 cm is a minimal lower pole, 25 cm beyond the largest ptotic breasts"},
+      {"base_width", 0.08, 0.25, "the breast's footprint on the chest"},
+      {"nipple_midline", 0.06, 0.20, "the nipple lies lateral of the sternum, medial of the axilla"},
+      {"projection", 0.02, 0.20, "the nipple's distance in front of the chest wall"},
+  };
+  return r;
+}
+
+namespace
+{
+const std::vector<std::string> side_keys = {"sn_n", "n_imf", "base_width", "nipple_midline", "projection",
+                                            "ptosis_grade"};
+
+struct Reader
+{
+  std::string source;
+  double unit = 0; // metres per file unit
+  std::string unit_name;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const
+  {
+    throw InputError(fmt::format("patient '{}': key '{}' {}", source, key, what));
+  }
+
+  double length(const nlohmann::json& side, const std::string& name, const std::string& key) const
+  {
+    const auto& v = side.at(name);
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      fail(key, fmt::format("= {} is not a finite number", shorten(v.dump())));
+    const double x = v.get<double>() * unit;
+    for (const auto& r : landmark_ranges())
+      if (r.key == name && !(x >= r.lo && x <= r.hi))
+        fail(key, fmt::format("= {} {} is out of range: [{}, {}] {} ({})", v.get<double>(), unit_name,
+                              r.lo / unit, r.hi / unit, unit_name, r.why));
+    return x;
+  }
+
+  SideLandmarks side(const nlohmann::json& j, const std::string& name) const
+  {
+    if (!j.is_object())
+      fail(name, "must be an object of landmarks");
+    for (const auto& [k, _] : j.items())
+      if (std::find(side_keys.begin(), side_keys.end(), k) == side_keys.end())
+      {
+        const std::string guess = closest_match(k, side_keys);
+        fail(name + "." + k, "is not a landmark" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)")
+                                 + "; allowed: sn_n, n_imf, base_width, nipple_midline, projection, ptosis_grade");
+      }
+    for (const char* k : {"sn_n", "n_imf", "base_width", "nipple_midline"})
+      if (!j.contains(k))
+        fail(name + "." + k, "is missing (required: sn_n, n_imf, base_width, nipple_midline)");
+    SideLandmarks s;
+    s.sn_n = length(j, "sn_n", name + ".sn_n");
+    s.n_imf = length(j, "n_imf", name + ".n_imf");
+    s.base_width = length(j, "base_width", name + ".base_width");
+    s.nipple_midline = length(j, "nipple_midline", name + ".nipple_midline");
+    if (j.contains("projection"))
+      s.projection = length(j, "projection", name + ".projection");
+    if (j.contains("ptosis_grade"))
+    {
+      const auto& g = j.at("ptosis_grade");
+      if (!g.is_number_integer() || g.get<int>() < 0 || g.get<int>() > 3)
+        fail(name + ".ptosis_grade", fmt::format("= {} is out of range: an integer 0-3 (Regnault: 0 none, "
+                                                 "1 nipple at the fold, 2 1-3 cm below it, 3 more)",
+                                                 shorten(g.dump())));
+      s.ptosis_grade = g.get<int>();
+    }
+    if (s.nipple_midline < s.base_width / 2)
+      fail(name + ".nipple_midline",
+           fmt::format("= {} {} is less than half the base width ({} {}): the breast's base would cross "
+                       "the midline",
+                       s.nipple_midline / unit, unit_name, s.base_width / 2 / unit, unit_name));
+    return s;
+  }
+};
+} // namespace
+
+Patient patient_from_json(const nlohmann::json& j, const std::string& source)
+{
+  Reader rd{source, 0, ""};
+  if (!j.is_object())
+    rd.fail("(document)", "must be a JSON object");
+  const std::vector<std::string> top = {"format", "id", "units", "left", "right"};
+  for (const auto& [k, _] : j.items())
+    if (std::find(top.begin(), top.end(), k) == top.end())
+    {
+      const std::string guess = closest_match(k, top);
+      rd.fail(k, "is not allowed" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)")
+                     + "; allowed: format, id, units, left, right");
+    }
+  if (j.value("format", "") != "breastsim-patient/1")
+    rd.fail("format", "must be \"breastsim-patient/1\"");
+  const std::map<std::string, double> units = {{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}};
+  const auto u = j.contains("units") && j.at("units").is_string() ? j.at("units").get<std::string>() : "";
+  if (!units.count(u))
+    rd.fail("units", "must be one of mm, cm, m (the unit of every length in the file)");
+  rd.unit = units.at(u);
+  rd.unit_name = u;
+  Patient p;
+  if (j.contains("id"))
+  {
+    if (!j.at("id").is_string() || j.at("id").get<std::string>().size() > 64)
+      rd.fail("id", "must be a text of at most 64 characters");
+    p.id = j.at("id").get<std::string>();
+  }
+  for (const char* side : {"left", "right"})
+    if (j.contains(side))
+      p.sides[side] = rd.side(j.at(side), side);
+  if (p.sides.empty())
+    rd.fail("left", "is missing: give the landmarks of the left and/or the right breast");
+  return p;
+}
+
+Patient read_patient(const std::filesystem::path& file)
+{
+  return patient_from_json(calibration::read_json_file(file, "patient file"), file.string());
+}
+
+nlohmann::json to_json(const SideLandmarks& s)
+{
+  nlohmann::json j = {{"sn_n_mm", 1e3 * s.sn_n}, {"n_imf_mm", 1e3 * s.n_imf},
+                      {"base_width_mm", 1e3 * s.base_width}, {"nipple_midline_mm", 1e3 * s.nipple_midline}};
+  if (s.projection)
+    j["projection_mm"] = 1e3 * *s.projection;
+  if (s.ptosis_grade)
+    j["ptosis_grade"] = *s.ptosis_grade;
+  return j;
+}
+} // namespace breastsim::clinic

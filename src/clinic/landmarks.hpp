@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#pragma once
+// A patient as the clinic measures her, standing: per breast the sternal
+// notch to nipple (SN-N), nipple to inframammary fold (N-IMF), base width
+// and nipple to midline, optionally projection and Regnault's ptosis grade
+// (docs/CLINIC.md, "The patient file"). Read once, checked against the
+// accepted ranges with the reason for each.
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace breastsim::clinic
+{
+/// One breast's landmarks, standing [m].
+struct SideLandmarks
+{
+  double sn_n = 0, n_imf = 0, base_width = 0, nipple_midline = 0;
+  std::optional<double> projection;
+  std::optional<int> ptosis_grade; ///< 0 (none) to 3
+};
+
+struct Patient
+{
+  std::string id;                             ///< the patient's ID (as the clinic writes it)
+  std::map<std::string, SideLandmarks> sides; ///< "left" and/or "right"
+};
+
+/// An accepted range of a landmark [m] and why it is bounded so.
+struct LandmarkRange
+{
+  std::string key;
+  double lo, hi;
+  std::string why;
+};
+const std::vector<LandmarkRange>& landmark_ranges();
+
+/// The patient document `breastsim-patient/1` (docs/CLINIC.md). Throws
+/// InputError naming the key, the value (in the file's unit) and the
+/// accepted range with its reason.
+Patient patient_from_json(const nlohmann::json& j, const std::string& source);
+Patient read_patient(const std::filesystem::path& file);
+nlohmann::json to_json(const SideLandmarks& s); ///< in mm
+} // namespace breastsim::clinic

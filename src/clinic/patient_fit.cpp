@@ -1,0 +1,406 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+#include "patient_fit.hpp"
+#include "errors.hpp"
+#include "forward_model.hpp"
+#include "log.hpp"
+#include "model.hpp"
+#include "on_root.hpp"
+#include "posture.hpp"
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace breastsim::clinic
+{
+using calibration::ForwardModel;
+
+StandingMeasures measure_standing(const SkinSurface& s, const Point& nipple, const Point* notch, MPI_Comm comm)
+{
+  std::vector<double> v(10, 0.0);
+  on_root(comm,
+          [&]
+          {
+            Point fold{};
+            v[0] = base_width(s);
+            v[1] = nipple_to_fold(s, nipple, &fold);
+            for (const auto& p : s.deformed)
+              v[2] = std::max(v[2], p[1]); // projection: max y over the skin
+            v[3] = notch ? taut_tape(s, *notch, nipple) : 0.0;
+            std::copy(fold.begin(), fold.end(), v.begin() + 4);
+          });
+  MPI_Bcast(v.data(), static_cast<int>(v.size()), MPI_DOUBLE, 0, comm);
+  StandingMeasures m;
+  m.landmarks.base_width = v[0];
+  m.landmarks.n_imf = v[1];
+  m.landmarks.projection = v[2];
+  m.landmarks.sn_n = v[3];
+  m.nipple = nipple;
+  m.fold = {v[4], v[5], v[6]};
+  m.landmarks.nipple_midline = notch ? nipple[0] - (*notch)[0] : 0.0;
+  m.ptosis_grade = ptosis_grade(m.fold[2] - nipple[2]);
+  m.landmarks.ptosis_grade = m.ptosis_grade;
+  return m;
+}
+
+double place_notch(const SkinSurface& s, const Point& nipple, double nipple_midline, double sn_n, MPI_Comm comm)
+{
+  double z = 0;
+  on_root(comm,
+          [&]
+          {
+            // The tape's length grows with the notch's height above the nipple.
+            auto tape = [&](double zn) { return taut_tape(s, {nipple[0] - nipple_midline, 0, zn}, nipple); };
+            double lo = nipple[2], hi = nipple[2] + 0.6;
+            if (tape(lo) > sn_n)
+              throw InputError(fmt::format(
+                  "SN-N = {:.1f} cm is shorter than the tape from the midline to this nipple at its own "
+                  "height ({:.1f} cm): with a nipple {:.1f} cm from the midline, SN-N must be longer",
+                  100 * sn_n, 100 * tape(lo), 100 * nipple_midline));
+            for (int k = 0; k < 60 && hi - lo > 1e-6; ++k)
+              (tape(0.5 * (lo + hi)) < sn_n ? lo : hi) = 0.5 * (lo + hi);
+            z = 0.5 * (lo + hi);
+          });
+  MPI_Bcast(&z, 1, MPI_DOUBLE, 0, comm);
+  return z;
+}
+
+namespace
+{
+/// Height H of the cap of base radius R whose meridian from the apex to the
+/// rim has length `arc`: rho = (R^2 + H^2) / 2H, arc = rho acos(1 - H / rho).
+double cap_height_for_arc(double R, double arc)
+{
+  auto length = [R](double H)
+  {
+    const double rho = (R * R + H * H) / (2 * H);
+    return rho * std::acos(1 - H / rho);
+  };
+  double lo = 0.2 * R, hi = 1.5 * R;
+  for (int k = 0; k < 60; ++k)
+    (length(0.5 * (lo + hi)) < arc ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+std::vector<double> solve_small(std::vector<std::vector<double>> A, std::vector<double> b)
+{
+  const std::size_t n = b.size();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    std::size_t p = k;
+    for (std::size_t i = k + 1; i < n; ++i)
+      if (std::abs(A[i][k]) > std::abs(A[p][k]))
+        p = i;
+    std::swap(A[k], A[p]);
+    std::swap(b[k], b[p]);
+    for (std::size_t i = k + 1; i < n; ++i)
+    {
+      const double f = A[i][k] / A[k][k];
+      for (std::size_t j = k; j < n; ++j)
+        A[i][j] -= f * A[k][j];
+      b[i] -= f * b[k];
+    }
+  }
+  std::vector<double> x(n);
+  for (std::size_t k = n; k-- > 0;)
+  {
+    double s = b[k];
+    for (std::size_t j = k + 1; j < n; ++j)
+      s -= A[k][j] * x[j];
+    x[k] = s / A[k][k];
+  }
+  return x;
+}
+
+/// The nipple's height below the fold [m] in the middle of a ptosis grade's
+/// interval (ptosis_grade()): 2 cm above the fold for grade 0, at the fold
+/// for 1, 2 cm below for 2, 4 cm below for 3.
+constexpr double min_factor = 0.02, max_factor = 20; ///< range of the stiffness factor k
+
+double grade_centre(int grade)
+{
+  static const double centre[] = {-0.02, 0.0, 0.02, 0.04};
+  return centre[grade];
+}
+
+/// The elastic moduli scaled by the stiffness factor k: tissue and skin mu
+/// and lambda (the base springs keep the case's c). Scaling them all by k
+/// is gravity scaled by 1/k in the body: k < 1 is a laxer breast that sags more.
+const std::vector<std::string>& moduli()
+{
+  static const std::vector<std::string> keys = {"tissue.mu", "tissue.lambda", "skin.mu", "skin.lambda"};
+  return keys;
+}
+
+/// One breast's fit: unknowns y = (R, H [, log k]), residuals [m]: base
+/// width, N-IMF [, the nipple's height below the fold - the grade's centre].
+class SideFit
+{
+public:
+  SideFit(const Config& base, const SideLandmarks& t, MPI_Comm comm)
+      : _base(base), _target(t), _comm(comm), _forward({named_posture("standing")}, comm),
+        _stiffness(t.ptosis_grade.has_value())
+  {
+  }
+
+  Config config(const std::vector<double>& y) const
+  {
+    Config c = _base;
+    c.set("geometry.R", y[0]);
+    c.set("geometry.H", y[1]);
+    if (_stiffness)
+      for (const auto& key : moduli())
+        c.set(key, std::exp(y[2]) * _base.number(key));
+    return c;
+  }
+
+  std::vector<double> clamp(std::vector<double> y) const
+  {
+    y[0] = std::clamp(y[0], 0.035, 0.15);
+    const double h_min = std::max(0.2 * y[0], 2.5 * _base.number("geometry.mesh_size"));
+    y[1] = std::clamp(y[1], h_min, 1.5 * y[0]);
+    if (_stiffness)
+      y[2] = std::clamp(y[2], std::log(min_factor), std::log(max_factor));
+    return y;
+  }
+
+  std::vector<double> initial() const
+  {
+    const double R = 0.5 * _target.base_width;
+    std::vector<double> y = {R, cap_height_for_arc(R, _target.n_imf)};
+    if (_stiffness)
+      y.push_back(0.0);
+    return clamp(y);
+  }
+
+  /// Solve standing at y; the measures and the residuals.
+  std::pair<StandingMeasures, std::vector<double>> evaluate(const std::vector<double>& y)
+  {
+    const Config c = config(y);
+    c.validate();
+    SkinSurface s;
+    _forward.prepare(c);
+    const Observables o = _forward.solve_posture(0, c, [&](std::size_t, const Model& m) { s = gather_skin_surface(m); });
+    ++_solves;
+    _surface = s;
+    const StandingMeasures m = measure_standing(s, o.nipple, nullptr, _comm);
+    return {m, residuals(m)};
+  }
+
+  std::vector<double> residuals(const StandingMeasures& m) const
+  {
+    std::vector<double> r = {m.landmarks.base_width - _target.base_width, m.landmarks.n_imf - _target.n_imf};
+    if (_stiffness)
+      r.push_back((m.fold[2] - m.nipple[2]) - grade_centre(*_target.ptosis_grade));
+    return r;
+  }
+
+  /// d residuals / d log k at the equilibrium of y, from du/dlog k = -K^{-1} dR/dlog k
+  /// (dR/dlog k: the residual difference of the cases at log k +- 1e-4).
+  std::vector<double> stiffness_column(const std::vector<double>& y, const StandingMeasures& at)
+  {
+    const double h = 1e-4;
+    std::vector<double> yp = y, ym = y;
+    yp[2] += h;
+    ym[2] -= h;
+    std::vector<double> col;
+    _forward.sensitivities(0, config(y), {{config(yp), config(ym), 2 * h}},
+                           [&](std::size_t, const Model& model, std::span<const double> du, const Observables& d)
+                           {
+                             // The measures along u + eps du: geometry only, no solve.
+                             const double eps = 1e-4;
+                             const auto u = model.displacement()->x()->array();
+                             std::vector<double> moved(u.begin(), u.end());
+                             for (std::size_t k = 0; k < moved.size(); ++k)
+                               moved[k] += eps * du[k];
+                             Point nipple = at.nipple;
+                             for (int k = 0; k < 3; ++k)
+                               nipple[k] += eps * d.nipple[k];
+                             const auto r1 = residuals(measure_standing(gather_skin_surface(model, moved), nipple,
+                                                                        nullptr, _comm));
+                             const auto r0 = residuals(at);
+                             for (std::size_t k = 0; k < r0.size(); ++k)
+                               col.push_back((r1[k] - r0[k]) / eps);
+                           });
+    return col;
+  }
+
+  bool fits_stiffness() const { return _stiffness; }
+  int solves() const { return _solves; }
+  const SkinSurface& surface() const { return _surface; }
+
+private:
+  Config _base;
+  SideLandmarks _target;
+  MPI_Comm _comm;
+  ForwardModel _forward;
+  bool _stiffness;
+  int _solves = 0;
+  SkinSurface _surface;
+};
+
+double largest(const std::vector<double>& r)
+{
+  double m = 0;
+  for (double x : r)
+    m = std::max(m, std::abs(x));
+  return m;
+}
+
+double norm2(const std::vector<double>& r)
+{
+  double s = 0;
+  for (double x : r)
+    s += x * x;
+  return s;
+}
+
+/// The Levenberg-Marquardt step (J^T J + lambda diag(J^T J)) dy = -J^T r.
+std::vector<double> lm_step(const std::vector<std::vector<double>>& J, const std::vector<double>& r, double lambda)
+{
+  const std::size_t n = J.size(), m = r.size();
+  std::vector<std::vector<double>> A(n, std::vector<double>(n, 0.0));
+  std::vector<double> b(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < m; ++k)
+        A[i][j] += J[i][k] * J[j][k];
+    for (std::size_t k = 0; k < m; ++k)
+      b[i] -= J[i][k] * r[k];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    A[i][i] *= 1 + lambda;
+  return solve_small(A, b);
+}
+} // namespace
+
+SideModel fit_side(const Config& base, const std::string& side, const SideLandmarks& target, double tolerance,
+                   MPI_Comm comm)
+{
+  SideFit fit(base, target, comm);
+  std::vector<double> y = fit.initial();
+  auto [m, r] = fit.evaluate(y);
+  double lambda = 1e-3;
+  int it = 0;
+  // Done when width and N-IMF are within a quarter of the tolerance and the
+  // nipple within 2 mm of its grade's centre.
+  auto done = [&](const std::vector<double>& res)
+  { return std::abs(res[0]) <= tolerance / 4 && std::abs(res[1]) <= tolerance / 4 && (res.size() < 3 || std::abs(res[2]) <= 2e-3); };
+  for (; it < 20 && !done(r); ++it)
+  {
+    // Columns of J = dr/dy: R and H move the mesh (forward differences on the morph), mu does not.
+    std::vector<std::vector<double>> J;
+    for (int k = 0; k < 2; ++k)
+    {
+      std::vector<double> yk = y;
+      yk[k] += 5e-4;
+      const double h = fit.clamp(yk)[k] == yk[k] ? 5e-4 : -5e-4; // backward at an upper bound
+      yk[k] = y[k] + h;
+      const auto rk = fit.evaluate(yk).second;
+      std::vector<double> col(r.size());
+      for (std::size_t i = 0; i < r.size(); ++i)
+        col[i] = (rk[i] - r[i]) / h;
+      J.push_back(col);
+    }
+    if (fit.fits_stiffness())
+    {
+      fit.evaluate(y); // the equilibrium at y, where the tangent is taken
+      J.push_back(fit.stiffness_column(y, m));
+    }
+    for (std::size_t k = 0; k < J.size(); ++k)
+      log::debug("patient {}: column {}: {} {} {}", side, k, J[k][0], J[k][1], J[k].size() > 2 ? J[k][2] : 0.0);
+    log::debug("patient {}: r {} {} {}", side, r[0], r[1], r.size() > 2 ? r[2] : 0.0);
+    bool moved = false;
+    for (int attempt = 0; attempt < 8 && !moved; ++attempt)
+    {
+      const auto step = lm_step(J, r, lambda);
+      // A trust region: at most 1 cm in R and H and a factor 2 in k per step.
+      const double scale = std::min({1.0, 0.01 / std::max(std::abs(step[0]), 1e-12),
+                                     0.01 / std::max(std::abs(step[1]), 1e-12),
+                                     step.size() > 2 ? std::log(2.0) / std::max(std::abs(step[2]), 1e-12) : 1.0});
+      std::vector<double> trial = y;
+      for (std::size_t k = 0; k < y.size(); ++k)
+        trial[k] += scale * step[k];
+      trial = fit.clamp(trial);
+      try
+      {
+        auto [mt, rt] = fit.evaluate(trial);
+        if (norm2(rt) < norm2(r))
+        {
+          y = trial, m = mt, r = rt, moved = true;
+          lambda = std::max(lambda / 3, 1e-6);
+          continue;
+        }
+      }
+      catch (const SolveError& e)
+      {
+        log::debug("patient {}: trial not solved ({})", side, e.what());
+      }
+      lambda *= 4;
+    }
+    if (!moved)
+      break;
+    log::info("patient {}: iteration {}: width {:.1f} mm, N-IMF {:.1f} mm, largest error {:.2f} mm", side, it + 1,
+             1e3 * m.landmarks.base_width, 1e3 * m.landmarks.n_imf, 1e3 * largest(r));
+  }
+  fit.evaluate(y); // the surface of the final y
+  SideModel out;
+  out.side = side;
+  out.target = target;
+  out.config = fit.config(y);
+  out.stiffness_factor = fit.fits_stiffness() ? std::exp(y[2]) : 1.0;
+  out.iterations = it;
+  const double notch_z = place_notch(fit.surface(), m.nipple, target.nipple_midline, target.sn_n, comm);
+  out.notch = {m.nipple[0] - target.nipple_midline, 0.0, notch_z};
+  out.achieved = measure_standing(fit.surface(), m.nipple, &out.notch, comm);
+  out.solves = fit.solves();
+  const auto rr = fit.residuals(out.achieved);
+  const char* names[] = {"base width", "N-IMF"};
+  std::string missed;
+  for (std::size_t k = 0; k < 2; ++k)
+  {
+    const double wanted = k == 0 ? target.base_width : target.n_imf;
+    if (std::abs(rr[k]) > tolerance)
+      missed += fmt::format("{}{} of {:.1f} cm (the closest it came is {:.1f} cm)", missed.empty() ? "" : " and ",
+                            names[k], 100 * wanted, 100 * (wanted + rr[k]));
+  }
+  if (!missed.empty())
+    throw InputError(fmt::format("patient {}: the model cannot reach the entered {} within {:.1f} mm (R = {:.1f} mm, "
+                                 "H = {:.1f} mm{}; a cap's height is at most 1.5 R)",
+                                 side, missed, 1e3 * tolerance, 1e3 * y[0], 1e3 * y[1],
+                                 fit.fits_stiffness() ? fmt::format(", stiffness x {:.3g}", std::exp(y[2])) : ""));
+  if (target.ptosis_grade && *target.ptosis_grade != out.achieved.ptosis_grade)
+    throw InputError(fmt::format("patient {}: the model cannot reach the entered ptosis grade {}: with its moduli "
+                                 "scaled by {} to {} its standing nipple lies at best {:.1f} cm {} the fold (grade {})",
+                                 side, *target.ptosis_grade, min_factor, max_factor, 100 * std::abs(out.achieved.fold[2] - m.nipple[2]),
+                                 m.nipple[2] < out.achieved.fold[2] ? "below" : "above", out.achieved.ptosis_grade));
+  out.largest_error = std::max({std::abs(rr[0]), std::abs(rr[1]), std::abs(out.achieved.landmarks.sn_n - target.sn_n)});
+  if (target.projection && std::abs(*out.achieved.landmarks.projection - *target.projection) > tolerance)
+    out.notes.push_back(fmt::format("entered projection {:.1f} cm, simulated {:.1f} cm: the cap's projection follows "
+                                    "from its width and N-IMF, so the projection is compared, not fitted",
+                                    100 * *target.projection, 100 * *out.achieved.landmarks.projection));
+  if (out.notch[2] < out.config.number("geometry.R"))
+    out.notes.push_back(fmt::format("the sternal notch lies {:.1f} cm above the base centre, below the base's upper "
+                                    "edge ({:.1f} cm): SN-N is short for this breast",
+                                    100 * out.notch[2], 100 * out.config.number("geometry.R")));
+  return out;
+}
+
+nlohmann::json to_json(const SideModel& m)
+{
+  return {{"side", m.side},
+          {"target", to_json(m.target)},
+          {"achieved", to_json(m.achieved.landmarks)},
+          {"largest_error_mm", 1e3 * m.largest_error},
+          {"R_m", m.config.number("geometry.R")},
+          {"H_m", m.config.number("geometry.H")},
+          {"tissue_mu_Pa", m.config.number("tissue.mu")},
+          {"stiffness_factor", m.stiffness_factor},
+          {"notch_m", m.notch},
+          {"nipple_standing_m", m.achieved.nipple},
+          {"fold_standing_m", m.achieved.fold},
+          {"iterations", m.iterations},
+          {"solves", m.solves},
+          {"notes", m.notes}};
+}
+} // namespace breastsim::clinic
