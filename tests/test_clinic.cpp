@@ -6,6 +6,7 @@
 #include "landmarks.hpp"
 #include "patient_fit.hpp"
 #include "skin_measures.hpp"
+#include "surgical_terms.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -220,5 +221,35 @@ TEST(PatientFit, RefusesAnUnreachableBreastNamingTheLandmark)
     const std::string m = e.what();
     EXPECT_NE(m.find("N-IMF of 25.0 cm"), std::string::npos) << m;
     EXPECT_NE(m.find("the closest it came is"), std::string::npos) << m;
+  }
+}
+
+TEST(SurgicalTerms, ResectedVolumeEqualsTheCadVolume)
+{
+  // The column quadrature against OCC's volume of the resected part, for
+  // the paper's incision and a wider, higher one.
+  const HalfCapSpec cap{0.07, 0.06, 0.012};
+  for (const IncisionSpec in : {IncisionSpec{}, IncisionSpec{40, 0.03, 0.02, 0.03}})
+  {
+    double half = 0;
+    meshes::mesh_resected_part(cap, in, {1, 2, 3, 4, 5}, &half);
+    EXPECT_NEAR(resected_volume(cap, meshes::incision_geometry(cap, in)) / (2 * half), 1.0, 2e-3) << in.a_deg;
+  }
+}
+
+TEST(SurgicalTerms, AngleForGramsInvertsTheWeight)
+{
+  const HalfCapSpec cap{0.07, 0.06, 0.012};
+  IncisionSpec in;
+  in.a_deg = angle_for_grams(cap, in, 150.0, 970.0);
+  EXPECT_NEAR(1e3 * 970 * resected_volume(cap, meshes::incision_geometry(cap, in), 300), 150.0, 0.05);
+  try
+  {
+    angle_for_grams(cap, IncisionSpec{}, 5000.0, 970.0);
+    FAIL() << "no refusal";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("a resection of 5000 g is out of reach"), std::string::npos) << e.what();
   }
 }

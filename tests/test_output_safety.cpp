@@ -99,6 +99,19 @@ TEST_F(FakeRoot, MarkedFolderIsReplacedOnlyWithNothingForeign)
   EXPECT_NE(reason(out).find("not a finished"), std::string::npos);
 }
 
+TEST_F(FakeRoot, ResultsHoldingNestedResultsAreReplaceable)
+{
+  // A plan or a sweep writes each surgery as a result folder of its own
+  // inside its result: the outer marker lists the inner markers.
+  const fs::path out = root / "home/user/work/plan";
+  touch(out / "right/summary.json");
+  write_marker(out / "right", "complete");
+  touch(out / "plan.json");
+  write_marker(out, "complete");
+  EXPECT_FALSE(refused(out)) << reason(out);
+  EXPECT_NE(read_marker(out)["files"].dump().find("right/.breastsim-result"), std::string::npos);
+}
+
 TEST_F(FakeRoot, PathsAreNormalised)
 {
   const fs::path w = root / "home/user/work";

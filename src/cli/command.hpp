@@ -30,4 +30,5 @@ Command add_scan_model_command(CLI::App& root);    // scan_model_command.cpp
 Command add_synthetic_patient_command(CLI::App& root); // synthetic_patient_command.cpp
 Command add_scan_calibrate_command(CLI::App& root);   // scan_calibrate_command.cpp
 Command add_patient_command(CLI::App& root);          // patient_command.cpp
+Command add_plan_command(CLI::App& root);             // plan_command.cpp
 } // namespace breastsim::cli

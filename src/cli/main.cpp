@@ -215,6 +215,7 @@ int main(int argc, char** argv)
       cli::add_synthetic_patient_command(app),
       cli::add_scan_calibrate_command(app),
       cli::add_patient_command(app),
+      cli::add_plan_command(app),
   };
 
   if (const int code = parse_command_line(argc, argv, app, commands); code >= 0)

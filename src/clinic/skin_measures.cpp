@@ -37,18 +37,18 @@ std::map<std::int32_t, std::vector<std::int32_t>> boundary_neighbours(const Skin
 }
 
 /// Vertices from `start` along the boundary, first stepping to `first`,
-/// until a vertex on the chest (included).
-std::vector<std::int32_t> walk_to_chest(const SkinSurface& s,
+/// while they lie in the symmetry plane (|x| of the reference at most
+/// `plane_tolerance`): the last one is where the meridian meets the chest
+/// (the base rim, or after surgery D, sewn to the chest).
+std::vector<std::int32_t> walk_meridian(const SkinSurface& s,
                                         const std::map<std::int32_t, std::vector<std::int32_t>>& next,
-                                        std::int32_t start, std::int32_t first, double chest_tolerance)
+                                        std::int32_t start, std::int32_t first, double plane_tolerance)
 {
   std::vector<std::int32_t> path{start};
   std::int32_t prev = start, cur = first;
-  for (std::size_t k = 0; k <= next.size(); ++k)
+  for (std::size_t k = 0; k <= next.size() && std::abs(s.reference[cur][0]) <= plane_tolerance; ++k)
   {
     path.push_back(cur);
-    if (s.reference[cur][1] <= chest_tolerance)
-      return path;
     const auto& n = next.at(cur);
     if (n.size() != 2)
       throw InputError("skin measures: the skin's boundary is not one loop (a vertex has "
@@ -57,11 +57,13 @@ std::vector<std::int32_t> walk_to_chest(const SkinSurface& s,
     prev = cur;
     cur = step;
   }
-  throw InputError("skin measures: the skin's meridian never reaches the chest");
+  if (path.size() < 2)
+    throw InputError("skin measures: the skin's boundary leaves the symmetry plane at the nipple");
+  return path;
 }
 } // namespace
 
-Meridian skin_meridian(const SkinSurface& s, const Point& nipple, double chest_tolerance)
+Meridian skin_meridian(const SkinSurface& s, const Point& nipple, double plane_tolerance)
 {
   if (!s.half_model)
     throw InputError("skin measures: clinical landmarks are measured on a half model (the cap)");
@@ -69,12 +71,12 @@ Meridian skin_meridian(const SkinSurface& s, const Point& nipple, double chest_t
   std::int32_t start = -1;
   double best = std::numeric_limits<double>::infinity();
   for (const auto& [v, n] : next)
-    if (const double d = distance(s.deformed[v], nipple); d < best && s.reference[v][1] > chest_tolerance)
+    if (const double d = distance(s.deformed[v], nipple); d < best && std::abs(s.reference[v][0]) <= plane_tolerance)
       best = d, start = v;
   if (start < 0 || next.at(start).size() != 2)
     throw InputError("skin measures: no skin boundary vertex near the nipple");
-  auto a = walk_to_chest(s, next, start, next.at(start)[0], chest_tolerance);
-  auto b = walk_to_chest(s, next, start, next.at(start)[1], chest_tolerance);
+  auto a = walk_meridian(s, next, start, next.at(start)[0], plane_tolerance);
+  auto b = walk_meridian(s, next, start, next.at(start)[1], plane_tolerance);
   // Order: the upper chest end first, the fold (the lower end) last.
   if (s.deformed[a.back()][2] < s.deformed[b.back()][2])
     std::swap(a, b);
@@ -228,6 +230,23 @@ Point deformed_position(const SkinSurface& s, const Point& reference)
       best = dist, out = d;
   }
   return out;
+}
+
+SkinSurface skin_surface(const nlohmann::json& doc)
+{
+  SkinSurface s;
+  const auto ref = doc.at("vertices_ref").get<std::vector<double>>();
+  const auto def = doc.at("vertices").get<std::vector<double>>();
+  const auto tri = doc.at("triangles").get<std::vector<std::int32_t>>();
+  for (std::size_t k = 0; k + 2 < ref.size(); k += 3)
+  {
+    s.reference.push_back({ref[k], ref[k + 1], ref[k + 2]});
+    s.deformed.push_back({def[k], def[k + 1], def[k + 2]});
+  }
+  for (std::size_t k = 0; k + 2 < tri.size(); k += 3)
+    s.triangles.push_back({tri[k], tri[k + 1], tri[k + 2]});
+  s.half_model = doc.at("mirror_x").get<bool>();
+  return s;
 }
 
 int ptosis_grade(double nipple_below_fold)

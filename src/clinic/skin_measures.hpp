@@ -4,8 +4,8 @@
 // base centre at the origin, chest y = 0, z up, symmetry plane x = 0 through
 // the nipple; docs/CLINIC.md, "Definitions"):
 // - the meridian: the skin's boundary curve in the symmetry plane, from the
-//   nipple up and down to where it meets the chest (the base rim, or a
-//   suture sewn to the chest after surgery); its lower end is the
+//   nipple up and down to where it leaves that plane at the chest (the base
+//   rim, or after surgery D, sewn to the chest); its lower end is the
 //   inframammary fold (IMF);
 // - N-IMF: the length along the skin of the meridian from the nipple to the fold;
 // - SN-N: a taut tape from the sternal notch (a point of the chest plane)
@@ -22,8 +22,9 @@ using Point = std::array<double, 3>;
 
 /// The meridian of a half model's skin, as deformed: points from the upper
 /// chest end through the nipple to the fold, and the index of the vertex
-/// nearest the nipple. `chest_tolerance` [m]: a vertex whose reference y is
-/// at most this lies on the chest (the rim, or a suture sewn to y = 0).
+/// nearest the nipple. `plane_tolerance` [m]: a boundary vertex whose
+/// reference |x| is at most this lies in the symmetry plane (after surgery
+/// the keel's skin edge is sewn to it within the suture's gap).
 struct Meridian
 {
   std::vector<Point> points;
@@ -31,7 +32,7 @@ struct Meridian
 };
 /// Throws InputError if `s` is not a half model or its boundary does not
 /// form one loop through the nipple.
-Meridian skin_meridian(const SkinSurface& s, const Point& nipple, double chest_tolerance = 2e-4);
+Meridian skin_meridian(const SkinSurface& s, const Point& nipple, double plane_tolerance = 2e-4);
 
 /// Length of the polyline `p` from its vertex `from` to its last vertex.
 double arc_length(const std::vector<Point>& p, std::size_t from);
@@ -56,6 +57,10 @@ double base_width(const SkinSurface& s, double chest_tolerance = 2e-4);
 /// its closest point on the reference skin, carried by the barycentric
 /// coordinates of its triangle.
 Point deformed_position(const SkinSurface& s, const Point& reference);
+
+/// The skin surface of a surface document (surface_json(): vertices_ref,
+/// vertices, triangles, mirror_x).
+SkinSurface skin_surface(const nlohmann::json& doc);
 
 /// Regnault's ptosis grade from the nipple's height below the fold [m]
 /// (negative: above it): 0 more than 1 cm above, 1 within 1 cm of the

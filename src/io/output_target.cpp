@@ -239,7 +239,7 @@ void write_marker(const fs::path& dir, const std::string& state)
   nlohmann::json files = nlohmann::json::array();
   if (state == "complete")
     for (const auto& e : fs::recursive_directory_iterator(dir))
-      if (!e.is_directory() && e.path().filename() != result_marker)
+      if (!e.is_directory() && e.path().lexically_relative(dir).string() != result_marker) // nested markers listed
         files.push_back(e.path().lexically_relative(dir).string());
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   char when[32];

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-3.0-or-later
+# `breastsim patient` and `breastsim plan` end to end (docs/CLINIC.md): both
+# breasts of the example patient within 1 mm of their landmarks; a plan
+# whose targets are reachable meets them and its numbers are those of its
+# own surgery folder; an unreachable target exits 4 naming the target and
+# how close it came; bad targets and landmarks exit 2 naming the key.
+set -eu
+BIN="$1"; CASES="$2"
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+coarse=(--set geometry.mesh_size=0.012)
+
+"$BIN" -q patient "$CASES/patient_example.json" "${coarse[@]}" --out "$work/patient" > "$work/patient.txt"
+"$BIN" -q patient "$CASES/patient_example.json" "${coarse[@]}" --out "$work/patient" > /dev/null # replaced
+/usr/bin/python3 - "$work/patient/patient_model.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+assert [s["side"] for s in m["sides"]] == ["left", "right"], m
+for s in m["sides"]:
+    t, a = s["target"], s["achieved"]
+    for k in ("sn_n_mm", "n_imf_mm", "base_width_mm", "nipple_midline_mm"):
+        assert abs(a[k] - t[k]) <= 1.0, (s["side"], k, a[k], t[k])
+    assert s["largest_error_mm"] <= 1.0
+left = m["sides"][0]
+assert left["achieved"]["ptosis_grade"] == 2 and left["stiffness_factor"] < 1
+print("patient: both breasts within 1 mm")
+PY
+test -s "$work/patient/case_left.toml"
+
+# A reachable plan for the right breast.
+"$BIN" -q plan "$CASES/patient_example.json" "${coarse[@]}" --target right.grams=150 \
+  --target right.sn_n=21.5cm --out "$work/plan" > "$work/plan.txt"
+/usr/bin/python3 - "$work/plan" <<'PY'
+import json, sys, os
+d = sys.argv[1]
+p = json.load(open(os.path.join(d, "plan.json")))
+assert p["met"] and len(p["sides"]) == 1, p["sides"][0]["unmet"]
+s = p["sides"][0]
+plan, post = s["plan"], s["plan"]["post_standing"]
+assert abs(post["sn_n_mm"] - 215) <= 5 and abs(plan["surgical"]["resection_g"] - 150) <= 7.5, plan
+# The plan's numbers are its own surgery's.
+surgery = json.load(open(os.path.join(d, "right", "summary.json")))
+assert abs(1e3 * 970 * surgery["resected_volume_m3"] - plan["surgical"]["resection_g"]) < 1e-6 * 150
+standing = [q for q in surgery["postop"] if q["theta_deg"] == 0][0]
+assert max(abs(a - b) for a, b in zip(standing["nipple_m"], post["nipple_m"])) < 1e-9
+import tomllib
+inc = plan["incision"]
+case = tomllib.load(open(os.path.join(d, "case_right.toml"), "rb"))["incision"]
+assert (case["a_deg"], case["s"], case["h"], case["d"]) == (inc["a_deg"], inc["s_m"], inc["h_m"], inc["d_m"]), case
+print("plan: met, SN-N", round(post["sn_n_mm"], 1), "mm,", round(plan["surgical"]["resection_g"], 1), "g")
+PY
+
+# An unreachable target (a nipple 15 cm from the notch): exit 4, the target
+# named with how close it came.
+set +e
+"$BIN" -q plan "$CASES/patient_example.json" "${coarse[@]}" --target right.sn_n=15cm \
+  --out "$work/plan4" > /dev/null 2> "$work/err4"
+rc=$?
+set -e
+test "$rc" = 4 || { echo "expected exit 4, got $rc"; cat "$work/err4"; exit 1; }
+grep -q "post-operative SN-N: target 15.0 cm, closest" "$work/err4"
+
+# Bad targets and landmarks: exit 2, naming the key.
+expect2() {
+  local pattern="$1"; shift
+  set +e; "$BIN" -q "$@" > /dev/null 2> "$work/err"; local rc=$?; set -e
+  test "$rc" = 2 || { echo "expected exit 2 for $*, got $rc"; cat "$work/err"; exit 1; }
+  grep -q -- "$pattern" "$work/err" || { echo "no '$pattern' in:"; cat "$work/err"; exit 1; }
+}
+expect2 "a length with its unit" plan "$CASES/patient_example.json" --target sn_n=21 --out "$work/x"
+expect2 "unknown target 'nipple'" plan "$CASES/patient_example.json" --target nipple=21cm --out "$work/x"
+expect2 "out of range" plan "$CASES/patient_example.json" --target grams=9000 --out "$work/x"
+printf '{"format": "breastsim-patient/1", "units": "cm", "left": {"sn_n": 240, "n_imf": 9, "base_width": 13, "nipple_midline": 10}}' > "$work/bad.json"
+expect2 "'left.sn_n' = 240 cm is out of range: \[15, 45\] cm" patient "$work/bad.json" --out "$work/x"
+test ! -e "$work/x"
+echo "clinic: all checks hold"
