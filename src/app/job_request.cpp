@@ -4,7 +4,10 @@
 #include "errors.hpp"
 #include "fit_parameters.hpp"
 #include "job_id.hpp"
+#include "landmarks.hpp"
 #include "measurements.hpp"
+#include "plan_job.hpp"
+#include "plan_targets.hpp"
 #include "plan_api.hpp"
 #include "recording_api.hpp"
 #include "sweep_request.hpp"
@@ -64,6 +67,27 @@ void check_scan_surgery(const nlohmann::json& request)
       throw InputError("key '" + key + "' is not applied to the surgery of a scanned breast (its case is the "
                        "scan's neutral case): allowed incision.*, postures.*, surgery.*");
 }
+/// A patient model (and a plan): the landmarks as `patient` reads them, the
+/// tolerance, and for a plan the targets as `plan` checks them.
+void check_patient(nlohmann::json& request, bool plan)
+{
+  const Config c = case_from_overrides(request["overrides"]);
+  if (!request.contains("patient"))
+    throw InputError("field 'patient' is missing: the landmarks, a breastsim-patient/1 document");
+  const clinic::Patient p = clinic::patient_from_json(request["patient"], "patient");
+  if (!request.contains("tolerance_mm"))
+    request["tolerance_mm"] = 1.0;
+  const auto& tol = request["tolerance_mm"];
+  if (!tol.is_number() || !(tol.get<double>() >= 0.1 && tol.get<double>() <= 10))
+    throw InputError("tolerance_mm = " + tol.dump().substr(0, 40) + " is out of range: allowed [0.1, 10] mm");
+  if (!plan)
+    return;
+  if (!request.contains("symmetric"))
+    request["symmetric"] = false;
+  if (!request["symmetric"].is_boolean())
+    throw InputError("symmetric = " + request["symmetric"].dump().substr(0, 40) + ": expected true or false");
+  clinic::check_plan_request(c, p, clinic::targets_from_json(request.value("targets", nlohmann::json())));
+}
 } // namespace
 
 bool is_scan_surgery_key(const std::string& key)
@@ -76,8 +100,10 @@ nlohmann::json checked_job_request(const nlohmann::json& body)
   if (!body.is_object())
     throw InputError("the job request must be a JSON object {\"kind\": ..., \"overrides\": {...}}");
   const auto kind = body.value("kind", nlohmann::json());
-  if (kind != "simulate" && kind != "surgery" && kind != "calibrate" && kind != "sweep")
-    throw InputError("kind = " + kind.dump().substr(0, 40) + ": allowed simulate, surgery, calibrate, sweep");
+  if (kind != "simulate" && kind != "surgery" && kind != "calibrate" && kind != "sweep" && kind != "patient" &&
+      kind != "plan")
+    throw InputError("kind = " + kind.dump().substr(0, 40) +
+                     ": allowed simulate, surgery, calibrate, sweep, patient, plan");
   nlohmann::json request = body;
   if (!request.contains("overrides"))
     request["overrides"] = nlohmann::json::object();
@@ -85,6 +111,16 @@ nlohmann::json checked_job_request(const nlohmann::json& body)
   {
     check_fields(body, {"kind", "overrides", "measurements", "recording", "fit", "max_evals"}, "calibrate");
     check_calibration(request);
+    return request;
+  }
+  if (kind == "patient" || kind == "plan")
+  {
+    check_fields(body,
+                 kind == "plan" ? std::set<std::string>{"kind", "overrides", "patient", "tolerance_mm", "targets",
+                                                        "symmetric"}
+                                : std::set<std::string>{"kind", "overrides", "patient", "tolerance_mm"},
+                 kind);
+    check_patient(request, kind == "plan");
     return request;
   }
   if (kind == "sweep")

@@ -8,6 +8,11 @@
 //    "scan": "<id of a finished scan job>"}: full-breast surgery on that
 //    scan's neutral case (<data>/jobs/<id>/neutral/case.reference.toml)
 //   {"kind": "sweep", "overrides": {...}, "vary": {"a": [...], "h": [...]}}
+//   {"kind": "patient", "overrides": {...}, "patient": {breastsim-patient/1},
+//    "tolerance_mm": 1}: a patient model per breast from its landmarks
+//   {"kind": "plan", ... as patient, "targets": {"left": {"sn_n_mm": 210,
+//    "n_imf_mm": 70, "grams": 400, "lower_pole": 0.55}, "right": {...}},
+//    "symmetric": false}: goal-directed plans (docs/CLINIC.md)
 // with the library's checks and messages (case keys, the incision on the
 // cap, the measurements as `calibrate` reads them, the --fit names).
 #include "calibrate_request.hpp"

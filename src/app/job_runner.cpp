@@ -7,6 +7,8 @@
 #include "job_evaluations.hpp"
 #include "job_id.hpp"
 #include "job_request.hpp"
+#include "plan_job.hpp"
+#include "plan_targets.hpp"
 #include "progress_channel.hpp"
 #include "scan_job.hpp"
 #include "simulate.hpp"
@@ -98,8 +100,18 @@ void run(const fs::path& folder)
     simulate(c, target, MPI_COMM_WORLD, progress);
   else if (kind == "sweep")
     sweep(c, sweep_grid(request.at("vary"), c), target, MPI_COMM_WORLD, 0, progress);
+  else if (kind == "patient" || kind == "plan")
+  {
+    const clinic::Patient p = clinic::patient_from_json(request.at("patient"), "patient");
+    const double tol = 1e-3 * request.at("tolerance_mm").get<double>();
+    if (kind == "patient")
+      clinic::write_patient_model(clinic::fit_patient(c, p, tol, MPI_COMM_WORLD), target, MPI_COMM_WORLD);
+    else
+      clinic::plan_patient(c, p, tol, clinic::targets_from_json(request.at("targets")),
+                           request.at("symmetric").get<bool>(), target, MPI_COMM_WORLD);
+  }
   else
-    throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate, sweep, scan");
+    throw InputError("kind = \"" + kind + "\": allowed simulate, surgery, calibrate, sweep, scan, patient, plan");
 }
 } // namespace
 

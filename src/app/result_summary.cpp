@@ -169,6 +169,11 @@ nlohmann::json summarize_result(const std::string& kind, const Config& c, const 
     return summarize_calibration(dir);
   if (kind == "sweep")
     return summarize_sweep(c, dir);
+  if (kind == "patient")
+    return {{"kind", "patient"}, {"patient_model", read_json(dir / "patient_model.json")}};
+  if (kind == "plan")
+    return {{"kind", "plan"}, {"patient_model", read_json(dir / "patient_model.json")},
+            {"plan", read_json(dir / "plan.json")}};
   const auto s = read_json(dir / "summary.json");
   return kind == "surgery" ? summarize_surgery(c, dir, s) : summarize_simulation(dir, s);
 }

@@ -37,24 +37,28 @@ PlanTargets symmetric_targets(PlanTargets t, const SidePlan& first, const SideMo
   return t;
 }
 
-void check_postures(const Config& c)
+} // namespace
+
+void check_plan_request(const Config& base, const Patient& p, const std::map<std::string, PlanTargets>& targets)
 {
-  const auto p = requested_postures(c);
-  if (p.empty() || p.front().theta_deg != 0.0)
+  const auto postures = requested_postures(base);
+  if (postures.empty() || postures.front().theta_deg != 0.0)
     throw InputError("key 'postures.names': plans are judged standing, so the first posture must be standing "
                      "(theta = 0)");
+  HalfCapSpec::from(base).require_parametric_cap("plan (the incision cuts the cap)");
+  if (targets.empty() || std::all_of(targets.begin(), targets.end(), [](const auto& t) { return t.second.empty(); }))
+    throw InputError("targets: no breast has a target (e.g. grams 400 and post-op SN-N 21 cm)");
+  for (const auto& [side, t] : targets)
+    if (!p.sides.count(side))
+      throw InputError(fmt::format("targets of the {} breast: the patient has no landmarks of the {} breast", side,
+                                   side));
 }
-} // namespace
 
 PatientPlan plan_patient(const Config& base, const Patient& p, double tolerance,
                          const std::map<std::string, PlanTargets>& targets, bool symmetric,
                          const OutputTarget& out, MPI_Comm comm)
 {
-  check_postures(base);
-  HalfCapSpec::from(base).require_parametric_cap("plan (the incision cuts the cap)");
-  for (const auto& [side, t] : targets)
-    if (!p.sides.count(side))
-      throw InputError(fmt::format("--target {}.*: the patient file has no landmarks of the {} breast", side, side));
+  check_plan_request(base, p, targets);
   OutputDir dir(out, comm);
   PatientPlan plan;
   plan.patient = fit_patient(base, p, tolerance, comm);
@@ -78,8 +82,6 @@ PatientPlan plan_patient(const Config& base, const Patient& p, double tolerance,
     chosen.set("incision.d", in.d);
     write_text(dir.path() / ("case_" + m.side + ".toml"), chosen.to_toml(), comm);
   }
-  if (plan.sides.empty())
-    throw InputError("--target: no breast has a target (give e.g. --target grams=400 --target sn_n=21cm)");
   nlohmann::json sides = nlohmann::json::array();
   for (const auto& s : plan.sides)
     sides.push_back(to_json(s));

@@ -20,10 +20,13 @@ struct PatientPlan
   bool met() const;
 };
 
+/// InputError unless `base` solves standing first on the parametric cap,
+/// some breast has a target, and every breast with targets has landmarks.
+void check_plan_request(const Config& base, const Patient& p, const std::map<std::string, PlanTargets>& targets);
+
 /// Collective. `targets`: per side ("left", "right"); sides of the patient
 /// without targets are modelled but not planned unless `symmetric`.
-/// InputError when the postures of `base` lack standing, or a side has
-/// targets but no landmarks.
+/// Checked first by check_plan_request.
 PatientPlan plan_patient(const Config& base, const Patient& p, double tolerance,
                          const std::map<std::string, PlanTargets>& targets, bool symmetric,
                          const OutputTarget& out, MPI_Comm comm);

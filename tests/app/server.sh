@@ -3,7 +3,8 @@
 # `breastsim serve` end to end, in one scratch folder, on a free loopback port:
 # refused options and data folders; hostile requests (malformed JSON, unknown
 # keys, out-of-range values, oversized bodies, path traversal, CORS, foreign
-# Host); the planning checks; a surgery job whose numbers equal the CLI's
+# Host); the planning checks; a patient job equal to the CLI's `patient` and
+# refused patient and plan requests; a surgery job whose numbers equal the CLI's
 # `breastsim surgery` on the same keys; a calibration equal to `calibrate`'s,
 # its evaluations (the progress channel, live and final) equal to its report's;
 # a surgery on an uploaded scan's breast equal to the CLI's on the scan's neutral case;
@@ -50,6 +51,20 @@ grep -q -- "--workers = 0 is out of range: allowed \[1, 16\]" "$work/refused.txt
 start_server
 checks refusals
 checks plan "$CASES/measurements_example.json"
+
+# A patient job and the CLI's `patient` on the same landmarks: the same model.
+checks clinic "$CASES/patient_example.json" "$work/patient_job.json"
+"$BIN" -q patient "$CASES/patient_example.json" --set geometry.mesh_size=0.012 --out "$work/patient_cli" > /dev/null
+/usr/bin/python3 - "$work/patient_job.json" "$work/patient_cli/patient_model.json" <<'PY'
+import json, sys
+app = json.load(open(sys.argv[1]))["summary"]["patient_model"]
+cli = json.load(open(sys.argv[2]))
+for a, c in zip(app["sides"], cli["sides"], strict=True):
+    for k in ("R_m", "H_m", "stiffness_factor"):
+        assert abs(a[k] - c[k]) <= 1e-12 * abs(c[k]), (a["side"], k, a[k], c[k])
+    assert a["achieved"] == c["achieved"] and a["notch_m"] == c["notch_m"], a["side"]
+print("patient job = CLI patient")
+PY
 
 # A surgery job and the CLI on the same keys: the same numbers.
 overrides='{"geometry.mesh_size": 0.012, "postures.names": ["standing", "supine"]}'

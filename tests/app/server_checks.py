@@ -166,6 +166,39 @@ def plan(api):
         check(s == 400 and "z_min" in r["error"] and "mm" in r["error"], f"measurements in mm refused ({r})")
 
 
+def clinic(api, patient_file, out):
+    """Patient and plan jobs: refused requests name the field; a patient job's model is the CLI's."""
+    doc = json.load(open(patient_file))
+    base = {"kind": "patient", "overrides": {"geometry.mesh_size": 0.012}}
+    bad_sn = json.loads(json.dumps(doc))
+    bad_sn["left"]["sn_n"] = 240
+    for body, what in [(base, "field 'patient' is missing"),
+                       ({**base, "patient": bad_sn}, "'left.sn_n' = 240 cm is out of range: [15, 45] cm"),
+                       ({**base, "patient": doc, "tolerance_mm": 0}, "tolerance_mm = 0 is out of range"),
+                       ({**base, "patient": doc, "targets": {}}, "field 'targets' is not allowed in a patient"),
+                       ({**base, "kind": "plan", "patient": doc}, "targets: an object"),
+                       ({**base, "kind": "plan", "patient": doc, "targets": {"middle": {"grams": 100}}},
+                        "targets.middle: the side must be left or right"),
+                       ({**base, "kind": "plan", "patient": doc, "targets": {"left": {"grams": 9000}}},
+                        "targets.left.grams = 9000 g is out of range: [10, 3000] g"),
+                       ({**base, "kind": "plan", "patient": doc, "targets": {"left": {"sn_n": 21}}},
+                        "targets.left.sn_n: unknown target"),
+                       ({**base, "kind": "plan", "patient": doc, "targets": {"left": {"grams": 100}},
+                         "symmetric": "yes"}, "symmetric = \"yes\": expected true or false"),
+                       ({**base, "kind": "plan", "patient": {**doc, "right": None}, "targets": {"left": {"grams": 100}}},
+                        "key 'right' must be an object")]:
+        s, r = api.json("POST", "/api/jobs", body)
+        check(s == 400 and what in r["error"], f"{body['kind']} refused: {what} ({r['error'][:80]})")
+    s, r = api.json("POST", "/api/jobs", {**base, "patient": doc})
+    check(s == 202, f"patient job accepted ({s} {r})")
+    rec = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
+    check(rec["state"] == "done", f"patient job done ({rec['state']}: {rec['error']})")
+    m = rec["summary"]["patient_model"]
+    check([x["side"] for x in m["sides"]] == ["left", "right"] and all(x["largest_error_mm"] <= 1 for x in m["sides"]),
+          "patient job: both breasts within 1 mm of their landmarks")
+    json.dump(rec, open(out, "w"))
+
+
 def surgery(api, overrides, out):
     s, r = api.json("POST", "/api/jobs", {"kind": "surgery", "overrides": json.loads(overrides)})
     check(s == 202, f"job accepted ({s} {r})")
@@ -359,6 +392,8 @@ if __name__ == "__main__":
         sweep_refusals(api)
     elif phase == "plan":
         plan(api)
+    elif phase == "clinic":
+        clinic(api, sys.argv[3], sys.argv[4])
     elif phase == "surgery":
         surgery(api, sys.argv[3], sys.argv[4])
     elif phase == "calibrate":
