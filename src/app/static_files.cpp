@@ -18,7 +18,7 @@ struct Entry
   const char* mime;
 };
 
-constexpr std::array<Entry, 11> table = {{
+constexpr std::array<Entry, 12> table = {{
     {"/", false, "app.html", "text/html; charset=utf-8"},
     {"/index.html", false, "app.html", "text/html; charset=utf-8"},
     {"/app.js", false, "app.js", "text/javascript; charset=utf-8"},
@@ -28,6 +28,7 @@ constexpr std::array<Entry, 11> table = {{
     {"/sweep.js", false, "sweep.js", "text/javascript; charset=utf-8"},
     {"/misfit_plot.js", false, "misfit_plot.js", "text/javascript; charset=utf-8"},
     {"/patient_files.js", false, "patient_files.js", "text/javascript; charset=utf-8"},
+    {"/consult.js", false, "consult.js", "text/javascript; charset=utf-8"},
     {"/three/three.module.js", true, "build/three.module.js", "text/javascript; charset=utf-8"},
     {"/three/OrbitControls.js", true, "examples/jsm/controls/OrbitControls.js",
      "text/javascript; charset=utf-8"},

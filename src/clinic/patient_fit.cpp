@@ -376,8 +376,8 @@ SideModel fit_side(const Config& base, const std::string& side, const SideLandma
                                  m.nipple[2] < out.achieved.fold[2] ? "below" : "above", out.achieved.ptosis_grade));
   out.largest_error = std::max({std::abs(rr[0]), std::abs(rr[1]), std::abs(out.achieved.landmarks.sn_n - target.sn_n)});
   if (target.projection && std::abs(*out.achieved.landmarks.projection - *target.projection) > tolerance)
-    out.notes.push_back(fmt::format("entered projection {:.1f} cm, simulated {:.1f} cm: the cap's projection follows "
-                                    "from its width and N-IMF, so the projection is compared, not fitted",
+    out.notes.push_back(fmt::format("entered projection {:.1f} cm, simulated {:.1f} cm: the model's breast shape ties projection "
+                                    "to width and nipple-to-fold length, so the projection is compared, not fitted",
                                     100 * *target.projection, 100 * *out.achieved.landmarks.projection));
   if (out.notch[2] < out.config.number("geometry.R"))
     out.notes.push_back(fmt::format("the sternal notch lies {:.1f} cm above the base centre, below the base's upper "

@@ -186,9 +186,10 @@ std::vector<std::string> trade_offs(const std::vector<PlanOutcome>& searched, co
     for (const auto& h : goals)
       if (h.target && h.name != g.name)
         others += fmt::format(", {} {:.1f} {}", h.name, h.scale * h.value(*best), h.unit);
-    out.push_back(fmt::format("{} alone comes to {:.1f} {} (target {:.1f}) at s = {:.1f} mm, h = {:.1f} mm{}", g.name,
-                              g.scale * g.value(*best), g.unit, g.scale * *g.target, 1e3 * best->incision.s,
-                              1e3 * best->incision.h, others));
+    out.push_back(fmt::format("{} alone comes to {:.1f} {} (target {:.1f}) with the new nipple marked {:.1f} cm from "
+                              "the notch and a vertical limb of {:.1f} cm{}",
+                              g.name, g.scale * g.value(*best), g.unit, g.scale * *g.target,
+                              100 * best->terms.new_nipple_sn_n, 100 * best->terms.vertical_limb, others));
   }
   return out;
 }

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: LGPL-3.0-or-later
 # The planning app's page in headless Chromium (page_test.js) against
 # `breastsim serve` on a free loopback port with a scratch --data folder.
-# Usage: page.sh BREASTSIM CASES_DIR NODE_MODULES_DIR [SHOT_DIR]
+# Usage: [PAGE_SCRIPT=consult_test.js] page.sh BREASTSIM CASES_DIR NODE_MODULES_DIR [SHOT_DIR]
 set -eu
 BIN="$1"; CASES="$2"; MODULES="$3"; HERE="$(cd "$(dirname "$0")" && pwd)"
 [ -x /usr/bin/chromium ] || { echo "Debian's chromium is missing: run bash .ci/setup"; exit 1; }
@@ -19,5 +19,5 @@ for _ in $(seq 1 100); do
   sleep 0.1
 done
 [ -n "$port" ] || { cat "$work/serve.out"; exit 1; }
-NODE_PATH="$MODULES" node "$HERE/page_test.js" "http://127.0.0.1:$port/" "$CASES/measurements_example.json" "$shots" "$BIN"
+NODE_PATH="$MODULES" node "$HERE/${PAGE_SCRIPT:-page_test.js}" "http://127.0.0.1:$port/" "$CASES/measurements_example.json" "$shots" "$BIN"
 echo "screenshots: $shots"

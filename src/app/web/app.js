@@ -7,6 +7,7 @@ import { View3D, POINT_COLOURS } from "/view3d.js";
 import { reportPictures, usesFit } from "/report.js";
 import { SWEEP_KEYS, sweepPictures, sweepRequest, sweepTable } from "/sweep.js";
 import { evaluationStage, misfitCaption, misfitPlotSvg } from "/misfit_plot.js";
+import { buildConsultForms, fillPatient, goalTargets, patientDocument, patientTable, planTables } from "/consult.js";
 import { RECORDING_FORMAT, SCAN_LIMITS, recordingText, scanSummaryHtml, scanUploadPath, uploadScan } from "/patient_files.js";
 
 const $ = (s) => document.querySelector(s);
@@ -331,11 +332,16 @@ const PANELS = {
            message: "#sweep-message" },
   scan: { run: "#scan-file", cancel: "#scan-cancel", progress: "#scan-progress", stage: "#scan-stage",
           message: "#scan-message" },
+  patient: { run: "#model-run", cancel: "#model-cancel", progress: "#model-progress", stage: "#model-stage",
+             message: "#model-message" },
+  plan: { run: "#goal-run", cancel: "#goal-cancel", progress: "#goal-progress", stage: "#goal-stage",
+          message: "#goal-message" },
 };
-const jobs = { surgery: null, calibrate: null, sweep: null, scan: null };
+const jobs = { surgery: null, calibrate: null, sweep: null, scan: null, patient: null, plan: null };
 
 function canRun(kind) {
-  if (kind === "scan") return jobs.scan === null;
+  if (kind === "scan" || kind === "patient") return jobs[kind] === null;
+  if (kind === "plan") return jobs.plan === null && state.patientModel !== undefined;
   if (kind === "surgery" && surgeryOnScan()) return jobs.surgery === null; // the job checks the plan on the scanned skin
   return jobs[kind] === null &&
     (kind === "calibrate" ? state.measurements !== null || state.recording !== null : state.incisionOk);
@@ -369,6 +375,40 @@ function runCalibration() {
   const data = state.recording ? { recording: state.recording } : { measurements: state.measurements };
   submit("calibrate", { kind: "calibrate", overrides, ...data,
                         fit: $("#cal-fit").value, max_evals: Number($("#cal-evals").value) });
+}
+
+// The consultation: the landmarks of both breasts (a patient job), then the goals (a plan job).
+function modelPatient() {
+  state.patient = patientDocument($);
+  submit("patient", { kind: "patient", overrides: caseOverrides(), patient: state.patient });
+}
+
+function findPlans() {
+  submit("plan", { kind: "plan", overrides: caseOverrides(), patient: state.patient, targets: goalTargets($),
+                   symmetric: $("#goal-symmetric").checked });
+}
+
+function showPatientModel(job) {
+  state.patientModel = job.summary.patient_model;
+  state.patient = job.request_patient || state.patient;
+  $("#model-result").innerHTML = patientTable(state.patientModel);
+  $("#goal-run").disabled = !canRun("plan");
+}
+
+function showPlans(job) {
+  $("#goal-result").innerHTML = planTables(job.summary);
+  const unmet = job.summary.plan.sides.flatMap((s) => s.unmet.map((u) => `${s.side}: ${u}`));
+  message($("#goal-message"), unmet.length ? "Not every goal can be met: " + unmet.join("; ") : "Every goal is met.",
+          unmet.length === 0);
+}
+
+function loadPatientFile(ev) {
+  const f = ev.target.files[0];
+  if (!f) return;
+  f.text().then((text) => {
+    try { fillPatient($, JSON.parse(text)); message($("#model-message"), `${f.name} loaded`, true); }
+    catch (e) { message($("#model-message"), `${f.name}: not a JSON patient file (${e.message})`); }
+  });
 }
 
 function attach(kind, id, fromPage) {
@@ -420,7 +460,9 @@ async function poll(kind) {
   jobs[kind] = null;
   $(panel.cancel).disabled = true;
   $(panel.run).disabled = !canRun(kind);
-  if (job.state === "done") await { surgery: showResult, calibrate: showCalibration, sweep: showSweep, scan: showScan }[kind](job);
+  if (job.state === "done")
+    await { surgery: showResult, calibrate: showCalibration, sweep: showSweep, scan: showScan, patient: showPatientModel,
+            plan: showPlans }[kind](job);
   else message($(panel.message), `${job.state}: ${job.error}`);
   if (kind === "surgery") refreshPlans();
 }
@@ -603,6 +645,12 @@ async function main() {
   buildCaseFields();
   buildMeasurementForm();
   buildSliders();
+  buildConsultForms(document);
+  $("#patient-file").addEventListener("change", loadPatientFile);
+  $("#model-run").addEventListener("click", modelPatient);
+  $("#model-cancel").addEventListener("click", () => cancel("patient"));
+  $("#goal-run").addEventListener("click", findPlans);
+  $("#goal-cancel").addEventListener("click", () => cancel("plan"));
   $("#run").addEventListener("click", runSurgery);
   $("#surgery-on-scan").addEventListener("change", () => { $("#run").disabled = !canRun("surgery"); });
   $("#cancel").addEventListener("click", () => cancel("surgery"));
@@ -623,7 +671,7 @@ async function main() {
     download("measurements.json", JSON.stringify(measurementDocument(), null, 2), "application/json"));
   await showSurfaces();
   await refreshPlans();
-  for (const kind of ["calibrate", "surgery", "sweep", "scan"]) { // a reload reattaches to the running (or finished) jobs
+  for (const kind of ["calibrate", "surgery", "sweep", "scan", "patient", "plan"]) { // a reload reattaches to the running (or finished) jobs
     const id = localStorage.getItem("breastsim.job." + kind);
     if (id) attach(kind, id, false);
   }

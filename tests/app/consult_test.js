@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: LGPL-3.0-or-later
+// The consultation in a real headless Chromium against `breastsim serve`
+// (docs/CLINIC.md, docs/APP.md): an asymmetric patient loaded from her
+// landmarks file -> a model of both breasts whose numbers are the CLI's
+// `breastsim patient` on the same file -> goals after surgery for each
+// breast -> the plans, met, with the numbers of the CLI's `breastsim plan`
+// -> the symmetry table. At 1024 and 1920 px nothing of the consultation is
+// cut off, and it speaks no model jargon. Screenshots into SHOT_DIR.
+// Usage: node consult_test.js URL MEASUREMENTS_JSON SHOT_DIR BREASTSIM   (NODE_PATH: playwright-core)
+"use strict";
+const fs = require("fs");
+const os = require("os");
+const path = require("path");
+const { execFileSync } = require("child_process");
+const { chromium } = require("playwright-core");
+
+const CHROMIUM = process.env.BREASTSIM_CHROMIUM || "/usr/bin/chromium";
+const [url, measurements, shots, program] = process.argv.slice(2);
+const patientFile = path.join(path.dirname(measurements), "patient_example.json");
+const coarse = ["--set", "geometry.mesh_size=0.012"];
+const goals = { left: { grams: 60, sn_n_mm: 23.5 }, right: { grams: 150, sn_n_mm: 21.5 } };
+let passed = 0;
+
+function check(ok, what) {
+  if (!ok) throw new Error("FAILED: " + what);
+  console.log("ok: " + what);
+  passed += 1;
+}
+
+function cli(args, dir) {
+  try {
+    execFileSync(program, ["-q", ...args, ...coarse, "--out", dir], { stdio: "ignore" });
+  } catch (e) {
+    if (e.status !== 4) throw e; // 4: targets not met, the plan is still written
+  }
+}
+
+// Every table and control of the consultation fits the panel: nothing is cut off.
+async function fits(page, width) {
+  await page.setViewportSize({ width, height: 900 });
+  await page.waitForTimeout(300);
+  const over = await page.evaluate(() => {
+    const panel = document.querySelector("#panels").getBoundingClientRect();
+    return [...document.querySelectorAll("#consult table, #consult button, #consult input, #consult p")]
+      .filter((e) => e.getBoundingClientRect().right > panel.right + 1)
+      .map((e) => e.id || e.tagName);
+  });
+  check(over.length === 0, `at ${width} px nothing of the consultation is cut off (${over.join(", ") || "all fit"})`);
+  await page.$eval("#consult", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, `0-consult-${width}.png`), fullPage: false });
+}
+
+async function walk(page, errors, work) {
+  await page.goto(url);
+  await page.waitForFunction(() => window.breastsimApp && window.breastsimApp.ready, null, { timeout: 30000 });
+  await page.fill("#case-geometry-mesh_size", "12");
+  await page.setInputFiles("#patient-file", patientFile);
+  await page.waitForFunction(() => /loaded/.test(document.querySelector("#model-message").textContent));
+  check(await page.inputValue("#lm-left-sn_n") === "26" && await page.inputValue("#lm-right-projection") === "6.5" &&
+        await page.inputValue("#lm-left-ptosis") === "2", "the patient file fills both breasts' landmarks");
+  await page.screenshot({ path: path.join(shots, "0-consult-landmarks.png") });
+
+  // A model of both breasts: the page's numbers are the CLI's.
+  await page.click("#model-run");
+  await page.waitForSelector("#model-table", { timeout: 300000 });
+  cli(["patient", patientFile], path.join(work, "patient"));
+  const model = JSON.parse(fs.readFileSync(path.join(work, "patient", "patient_model.json"), "utf8"));
+  for (const side of model.sides)
+    for (const key of ["sn_n_mm", "n_imf_mm", "base_width_mm", "nipple_midline_mm"]) {
+      const shown = await page.textContent(`[data-key="${side.side}-${key}"]`);
+      check(shown === (side.achieved[key] / 10).toFixed(1), `${side.side} ${key}: the page shows the CLI's ${shown} cm`);
+      check(Math.abs(side.achieved[key] - side.target[key]) <= 1, `${side.side} ${key} within 1 mm of the landmark`);
+    }
+  await page.$eval("#model-result", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, "0-consult-model.png") });
+
+  // Goals for each breast, then the plans: met, and the CLI's numbers.
+  for (const [side, g] of Object.entries(goals)) {
+    await page.fill(`#goal-${side}-grams`, String(g.grams));
+    await page.fill(`#goal-${side}-sn_n_mm`, String(g.sn_n_mm));
+  }
+  check(!(await page.$eval("#goal-run", (b) => b.disabled)), "the plans can be searched once the model is ready");
+  await page.click("#goal-run");
+  await page.waitForSelector("#symmetry", { timeout: 900000 });
+  const args = ["plan", patientFile];
+  for (const [side, g] of Object.entries(goals))
+    args.push("--target", `${side}.grams=${g.grams}`, "--target", `${side}.sn_n=${g.sn_n_mm}cm`);
+  cli(args, path.join(work, "plan"));
+  const plan = JSON.parse(fs.readFileSync(path.join(work, "plan", "plan.json"), "utf8"));
+  for (const s of plan.sides) {
+    const grams = await page.textContent(`[data-key="${s.side}-grams"]`);
+    const nipple = await page.textContent(`[data-key="${s.side}-new-nipple"]`);
+    check(grams === s.plan.surgical.resection_g.toFixed(0) &&
+          nipple === (s.plan.surgical.new_nipple_sn_n_mm / 10).toFixed(1),
+          `${s.side}: the marking is the CLI's (${nipple} cm, ${grams} g)`);
+    check(s.met, `${s.side}: every goal met (${s.unmet.join("; ") || "met"})`);
+  }
+  const said = await page.textContent("#goal-message");
+  check(said === "Every goal is met.", `the page says so (${said})`);
+  const rows = await page.$$eval("#symmetry tbody tr", (r) => r.map((x) => x.textContent));
+  check(rows.length === 4 && rows.every((r) => !r.includes("–")), "the symmetry table: before and after, both breasts");
+  await page.$eval("#goal-result", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, "0-consult-plans.png") });
+
+  const text = await page.textContent("#consult");
+  const jargon = text.match(/\b(Pa|chi2|mu|lambda|a_deg)\b|χ²/g);
+  check(!jargon, `the consultation speaks no model jargon (${jargon || "none"})`);
+  await fits(page, 1024);
+  await fits(page, 1920);
+  check(errors.length === 0, "no console errors" + (errors.length ? ": " + errors : ""));
+}
+
+async function main() {
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), "breastsim-chromium-"));
+  const work = fs.mkdtempSync(path.join(os.tmpdir(), "breastsim-consult-"));
+  const browser = await chromium.launchPersistentContext(profile, {
+    executablePath: CHROMIUM, headless: true, viewport: { width: 1280, height: 900 },
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
+           "--disable-component-update", "--disable-sync", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
+  });
+  try {
+    const page = await browser.newPage();
+    const errors = [];
+    page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+    page.on("pageerror", (e) => errors.push(String(e)));
+    await walk(page, errors, work);
+  } finally {
+    await browser.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+    fs.rmSync(work, { recursive: true, force: true });
+  }
+  console.log(`${passed} passed, 0 failed`);
+}
+
+main().catch((e) => { console.error(e.message || e); process.exit(1); });
