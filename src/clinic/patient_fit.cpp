@@ -274,6 +274,114 @@ std::vector<double> lm_step(const std::vector<std::vector<double>>& J, const std
 }
 } // namespace
 
+namespace
+{
+/// J = dr/dy at y: R and H move the mesh (forward differences on the
+/// morph, backward at an upper bound), k does not (the tangent).
+std::vector<std::vector<double>> jacobian(SideFit& fit, const std::vector<double>& y, const std::vector<double>& r,
+                                          const StandingMeasures& m)
+{
+  std::vector<std::vector<double>> J;
+  for (int k = 0; k < 2; ++k)
+  {
+    std::vector<double> yk = y;
+    yk[k] += 5e-4;
+    const double h = fit.clamp(yk)[k] == yk[k] ? 5e-4 : -5e-4;
+    yk[k] = y[k] + h;
+    const auto rk = fit.evaluate(yk).second;
+    std::vector<double> col(r.size());
+    for (std::size_t i = 0; i < r.size(); ++i)
+      col[i] = (rk[i] - r[i]) / h;
+    J.push_back(col);
+  }
+  if (fit.fits_stiffness())
+  {
+    fit.evaluate(y); // the equilibrium at y, where the tangent is taken
+    J.push_back(fit.stiffness_column(y, m));
+  }
+  return J;
+}
+
+/// One Levenberg-Marquardt move: steps of growing damping until one lowers
+/// |r| (y, m, r updated; false if none does in 8 tries). A trust region: at
+/// most 1 cm in R and H and a factor 2 in k per step.
+bool lm_move(SideFit& fit, const std::vector<std::vector<double>>& J, std::vector<double>& y, StandingMeasures& m,
+             std::vector<double>& r, double& lambda, const std::string& side)
+{
+  for (int attempt = 0; attempt < 8; ++attempt)
+  {
+    const auto step = lm_step(J, r, lambda);
+    const double scale = std::min({1.0, 0.01 / std::max(std::abs(step[0]), 1e-12),
+                                   0.01 / std::max(std::abs(step[1]), 1e-12),
+                                   step.size() > 2 ? std::log(2.0) / std::max(std::abs(step[2]), 1e-12) : 1.0});
+    std::vector<double> trial = y;
+    for (std::size_t k = 0; k < y.size(); ++k)
+      trial[k] += scale * step[k];
+    trial = fit.clamp(trial);
+    try
+    {
+      auto [mt, rt] = fit.evaluate(trial);
+      if (norm2(rt) < norm2(r))
+      {
+        y = trial, m = mt, r = rt;
+        lambda = std::max(lambda / 3, 1e-6);
+        return true;
+      }
+    }
+    catch (const SolveError& e)
+    {
+      log::debug("patient {}: trial not solved ({})", side, e.what());
+    }
+    lambda *= 4;
+  }
+  return false;
+}
+
+/// InputError when width or N-IMF is farther than the tolerance, or the grade is missed.
+void check_reached(const SideModel& out, const std::vector<double>& rr, const std::vector<double>& y,
+                   double tolerance)
+{
+  const auto& target = out.target;
+  const char* names[] = {"base width", "N-IMF"};
+  std::string missed;
+  for (std::size_t k = 0; k < 2; ++k)
+  {
+    const double wanted = k == 0 ? target.base_width : target.n_imf;
+    if (std::abs(rr[k]) > tolerance)
+      missed += fmt::format("{}{} of {:.1f} cm (the closest it came is {:.1f} cm)", missed.empty() ? "" : " and ",
+                            names[k], 100 * wanted, 100 * (wanted + rr[k]));
+  }
+  if (!missed.empty())
+    throw InputError(fmt::format("patient {}: the model cannot reach the entered {} within {:.1f} mm (R = {:.1f} mm, "
+                                 "H = {:.1f} mm{}; a cap's height is at most 1.5 R)",
+                                 out.side, missed, 1e3 * tolerance, 1e3 * y[0], 1e3 * y[1],
+                                 y.size() > 2 ? fmt::format(", stiffness x {:.3g}", std::exp(y[2])) : ""));
+  const auto& a = out.achieved;
+  if (target.ptosis_grade && *target.ptosis_grade != a.ptosis_grade)
+    throw InputError(fmt::format("patient {}: the model cannot reach the entered ptosis grade {}: with its moduli "
+                                 "scaled by {} to {} its standing nipple lies at best {:.1f} cm {} the fold (grade {})",
+                                 out.side, *target.ptosis_grade, min_factor, max_factor,
+                                 100 * std::abs(a.fold[2] - a.nipple[2]), a.nipple[2] < a.fold[2] ? "below" : "above",
+                                 a.ptosis_grade));
+}
+
+/// What the model does not reproduce by design: the projection, a notch below the base.
+void add_notes(SideModel& out, double tolerance)
+{
+  const auto& t = out.target;
+  const auto& a = out.achieved.landmarks;
+  if (t.projection && std::abs(*a.projection - *t.projection) > tolerance)
+    out.notes.push_back(fmt::format("entered projection {:.1f} cm, simulated {:.1f} cm: the model's breast shape ties "
+                                    "projection to width and nipple-to-fold length, so the projection is compared, "
+                                    "not fitted",
+                                    100 * *t.projection, 100 * *a.projection));
+  if (out.notch[2] < out.config.number("geometry.R"))
+    out.notes.push_back(fmt::format("the sternal notch lies {:.1f} cm above the base centre, below the base's upper "
+                                    "edge ({:.1f} cm): SN-N is short for this breast",
+                                    100 * out.notch[2], 100 * out.config.number("geometry.R")));
+}
+} // namespace
+
 SideModel fit_side(const Config& base, const std::string& side, const SideLandmarks& target, double tolerance,
                    MPI_Comm comm)
 {
@@ -281,67 +389,20 @@ SideModel fit_side(const Config& base, const std::string& side, const SideLandma
   std::vector<double> y = fit.initial();
   auto [m, r] = fit.evaluate(y);
   double lambda = 1e-3;
-  int it = 0;
   // Done when width and N-IMF are within a quarter of the tolerance and the
   // nipple within 2 mm of its grade's centre.
   auto done = [&](const std::vector<double>& res)
-  { return std::abs(res[0]) <= tolerance / 4 && std::abs(res[1]) <= tolerance / 4 && (res.size() < 3 || std::abs(res[2]) <= 2e-3); };
+  {
+    return std::abs(res[0]) <= tolerance / 4 && std::abs(res[1]) <= tolerance / 4 &&
+           (res.size() < 3 || std::abs(res[2]) <= 2e-3);
+  };
+  int it = 0;
   for (; it < 20 && !done(r); ++it)
   {
-    // Columns of J = dr/dy: R and H move the mesh (forward differences on the morph), mu does not.
-    std::vector<std::vector<double>> J;
-    for (int k = 0; k < 2; ++k)
-    {
-      std::vector<double> yk = y;
-      yk[k] += 5e-4;
-      const double h = fit.clamp(yk)[k] == yk[k] ? 5e-4 : -5e-4; // backward at an upper bound
-      yk[k] = y[k] + h;
-      const auto rk = fit.evaluate(yk).second;
-      std::vector<double> col(r.size());
-      for (std::size_t i = 0; i < r.size(); ++i)
-        col[i] = (rk[i] - r[i]) / h;
-      J.push_back(col);
-    }
-    if (fit.fits_stiffness())
-    {
-      fit.evaluate(y); // the equilibrium at y, where the tangent is taken
-      J.push_back(fit.stiffness_column(y, m));
-    }
-    for (std::size_t k = 0; k < J.size(); ++k)
-      log::debug("patient {}: column {}: {} {} {}", side, k, J[k][0], J[k][1], J[k].size() > 2 ? J[k][2] : 0.0);
-    log::debug("patient {}: r {} {} {}", side, r[0], r[1], r.size() > 2 ? r[2] : 0.0);
-    bool moved = false;
-    for (int attempt = 0; attempt < 8 && !moved; ++attempt)
-    {
-      const auto step = lm_step(J, r, lambda);
-      // A trust region: at most 1 cm in R and H and a factor 2 in k per step.
-      const double scale = std::min({1.0, 0.01 / std::max(std::abs(step[0]), 1e-12),
-                                     0.01 / std::max(std::abs(step[1]), 1e-12),
-                                     step.size() > 2 ? std::log(2.0) / std::max(std::abs(step[2]), 1e-12) : 1.0});
-      std::vector<double> trial = y;
-      for (std::size_t k = 0; k < y.size(); ++k)
-        trial[k] += scale * step[k];
-      trial = fit.clamp(trial);
-      try
-      {
-        auto [mt, rt] = fit.evaluate(trial);
-        if (norm2(rt) < norm2(r))
-        {
-          y = trial, m = mt, r = rt, moved = true;
-          lambda = std::max(lambda / 3, 1e-6);
-          continue;
-        }
-      }
-      catch (const SolveError& e)
-      {
-        log::debug("patient {}: trial not solved ({})", side, e.what());
-      }
-      lambda *= 4;
-    }
-    if (!moved)
+    if (!lm_move(fit, jacobian(fit, y, r, m), y, m, r, lambda, side))
       break;
     log::info("patient {}: iteration {}: width {:.1f} mm, N-IMF {:.1f} mm, largest error {:.2f} mm", side, it + 1,
-             1e3 * m.landmarks.base_width, 1e3 * m.landmarks.n_imf, 1e3 * largest(r));
+              1e3 * m.landmarks.base_width, 1e3 * m.landmarks.n_imf, 1e3 * largest(r));
   }
   fit.evaluate(y); // the surface of the final y
   SideModel out;
@@ -355,34 +416,9 @@ SideModel fit_side(const Config& base, const std::string& side, const SideLandma
   out.achieved = measure_standing(fit.surface(), m.nipple, &out.notch, comm);
   out.solves = fit.solves();
   const auto rr = fit.residuals(out.achieved);
-  const char* names[] = {"base width", "N-IMF"};
-  std::string missed;
-  for (std::size_t k = 0; k < 2; ++k)
-  {
-    const double wanted = k == 0 ? target.base_width : target.n_imf;
-    if (std::abs(rr[k]) > tolerance)
-      missed += fmt::format("{}{} of {:.1f} cm (the closest it came is {:.1f} cm)", missed.empty() ? "" : " and ",
-                            names[k], 100 * wanted, 100 * (wanted + rr[k]));
-  }
-  if (!missed.empty())
-    throw InputError(fmt::format("patient {}: the model cannot reach the entered {} within {:.1f} mm (R = {:.1f} mm, "
-                                 "H = {:.1f} mm{}; a cap's height is at most 1.5 R)",
-                                 side, missed, 1e3 * tolerance, 1e3 * y[0], 1e3 * y[1],
-                                 fit.fits_stiffness() ? fmt::format(", stiffness x {:.3g}", std::exp(y[2])) : ""));
-  if (target.ptosis_grade && *target.ptosis_grade != out.achieved.ptosis_grade)
-    throw InputError(fmt::format("patient {}: the model cannot reach the entered ptosis grade {}: with its moduli "
-                                 "scaled by {} to {} its standing nipple lies at best {:.1f} cm {} the fold (grade {})",
-                                 side, *target.ptosis_grade, min_factor, max_factor, 100 * std::abs(out.achieved.fold[2] - m.nipple[2]),
-                                 m.nipple[2] < out.achieved.fold[2] ? "below" : "above", out.achieved.ptosis_grade));
+  check_reached(out, rr, y, tolerance);
   out.largest_error = std::max({std::abs(rr[0]), std::abs(rr[1]), std::abs(out.achieved.landmarks.sn_n - target.sn_n)});
-  if (target.projection && std::abs(*out.achieved.landmarks.projection - *target.projection) > tolerance)
-    out.notes.push_back(fmt::format("entered projection {:.1f} cm, simulated {:.1f} cm: the model's breast shape ties projection "
-                                    "to width and nipple-to-fold length, so the projection is compared, not fitted",
-                                    100 * *target.projection, 100 * *out.achieved.landmarks.projection));
-  if (out.notch[2] < out.config.number("geometry.R"))
-    out.notes.push_back(fmt::format("the sternal notch lies {:.1f} cm above the base centre, below the base's upper "
-                                    "edge ({:.1f} cm): SN-N is short for this breast",
-                                    100 * out.notch[2], 100 * out.config.number("geometry.R")));
+  add_notes(out, tolerance);
   return out;
 }
 

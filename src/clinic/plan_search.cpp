@@ -100,17 +100,20 @@ PlanOutcome evaluate_plan(const SideModel& m, const IncisionSpec& in, const Conf
 namespace
 {
 /// The searched box: s in [0, 0.8 R], h in [0.1 H, 0.95 H] (A above the
-/// old nipple's level, D between the chest and the apex), as unit coordinates.
+/// old nipple's level, D between the chest and the apex), and the new
+/// fold's depth d in [0, 0.85 R], as unit coordinates.
 struct SearchBox
 {
   double R, H;
-  IncisionSpec at(const std::array<double, 2>& u, const IncisionSpec& base) const
+  IncisionSpec at(const std::array<double, 3>& u, const IncisionSpec& base) const
   {
     IncisionSpec in = base;
     in.s = 0.8 * R * u[0];
     in.h = H * (0.1 + 0.85 * u[1]);
+    in.d = 0.85 * R * u[2];
     return in;
   }
+  double unit_depth(double d) const { return std::clamp(d / (0.85 * R), 0.0, 1.0); }
 };
 
 class Search
@@ -122,7 +125,7 @@ public:
   {
   }
 
-  double operator()(const std::array<double, 2>& u)
+  double operator()(const std::array<double, 3>& u)
   {
     IncisionSpec in = _box.at(u, _base);
     PlanOutcome o;
@@ -201,27 +204,38 @@ SidePlan plan_side(const SideModel& m, const PlanTargets& t, const std::filesyst
   search_case.set("postures.names", std::vector<std::string>{"standing"});
   search_case.set("postures.theta_deg", std::vector<double>{});
   Search search(m, t, search_case, scratch, comm);
-  // A 4 x 4 grid, then Nelder-Mead from its best point (at most 16 more surgeries).
-  std::array<double, 2> best{0.5, 0.5};
+  // A 4 x 4 grid in (s, h) at the case's fold, then Nelder-Mead from its best
+  // point, in (s, h) or, with two or more free targets besides the weight,
+  // also in the fold's depth d.
+  const double ud = SearchBox{m.config.number("geometry.R"), 0}.unit_depth(IncisionSpec::from(m.config).d);
+  std::array<double, 3> best{0.5, 0.5, ud};
   double best_f = std::numeric_limits<double>::infinity();
   for (double us : {0.125, 0.375, 0.625, 0.875})
     for (double uh : {0.125, 0.375, 0.625, 0.875})
-      if (const double f = search({us, uh}); f < best_f)
-        best_f = f, best = {us, uh};
+      if (const double f = search({us, uh, ud}); f < best_f)
+        best_f = f, best = {us, uh, ud};
+  const int free_targets = t.sn_n.has_value() + t.n_imf.has_value() + t.lower_pole.has_value();
+  const unsigned n = free_targets >= 2 ? 3 : 2;
   if (best_f > 1.0 && best_f < 1e6)
   {
-    nlopt::opt opt(nlopt::LN_NELDERMEAD, 2);
-    opt.set_lower_bounds({0.0, 0.0});
-    opt.set_upper_bounds({1.0, 1.0});
+    std::pair<Search*, double> context{&search, ud}; // the search and the fold's depth when d is held
+    nlopt::opt opt(nlopt::LN_NELDERMEAD, n);
+    opt.set_lower_bounds(std::vector<double>(n, 0.0));
+    opt.set_upper_bounds(std::vector<double>(n, 1.0));
     opt.set_initial_step(0.1);
-    opt.set_maxeval(16);
+    opt.set_maxeval(n == 3 ? 24 : 16);
     opt.set_stopval(0.25); // every target within half its tolerance
     opt.set_xtol_abs(1e-3);
     opt.set_min_objective(
         [](const std::vector<double>& x, std::vector<double>&, void* data)
-        { return (*static_cast<Search*>(data))({x[0], x[1]}); },
-        &search);
+        {
+          auto* s = static_cast<std::pair<Search*, double>*>(data);
+          return (*s->first)({x[0], x[1], x.size() > 2 ? x[2] : s->second});
+        },
+        &context);
     std::vector<double> x{best[0], best[1]};
+    if (n == 3)
+      x.push_back(best[2]);
     double f = 0;
     try
     {

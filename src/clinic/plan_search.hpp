@@ -6,7 +6,8 @@
 // finds the incision that meets them. The weight fixes the keel's angle a
 // (angle_for_grams, geometry only); the new nipple's height s and D's
 // height h are searched, each evaluation one surgery solved standing: a
-// grid over (s, h), then NLopt's Nelder-Mead from its best point.
+// grid over (s, h), then NLopt's Nelder-Mead from its best point, also in
+// the new fold's depth d when two or more targets besides the weight are set.
 #include "patient_fit.hpp"
 #include "surgical_terms.hpp"
 #include <filesystem>
