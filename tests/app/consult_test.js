@@ -4,7 +4,8 @@
 // landmarks file -> a model of both breasts whose numbers are the CLI's
 // `breastsim patient` on the same file -> goals after surgery for each
 // breast -> the plans, met, with the numbers of the CLI's `breastsim plan`
-// -> the symmetry table. At 1024 and 1920 px nothing of the consultation is
+// -> the symmetry table -> both breasts on the chest, before | after, from
+// each camera preset. At 1024 and 1920 px nothing of the consultation is
 // cut off, and it speaks no model jargon. Screenshots into SHOT_DIR.
 // Usage: node consult_test.js URL MEASUREMENTS_JSON SHOT_DIR BREASTSIM   (NODE_PATH: playwright-core)
 "use strict";
@@ -101,6 +102,17 @@ async function walk(page, errors, work) {
   check(rows.length === 4 && rows.every((r) => !r.includes("–")), "the symmetry table: before and after, both breasts");
   await page.$eval("#goal-result", (e) => e.scrollIntoView());
   await page.screenshot({ path: path.join(shots, "0-consult-plans.png") });
+
+  // Both breasts on the chest, before | after, from each preset.
+  await page.waitForFunction(() => window.breastsimApp.torsoShown, null, { timeout: 30000 });
+  const torso = await page.evaluate(() => window.breastsimApp.torsoShown);
+  check(torso.breasts === 2 && torso.vertices > 1000, `both breasts drawn before and after (${torso.vertices} vertices)`);
+  for (const preset of ["front", "side", "oblique", "below"]) {
+    await page.click(`#torso-presets button[data-preset=${preset}]`);
+    await page.waitForTimeout(200);
+    await page.screenshot({ path: path.join(shots, `0-torso-${preset}.png`) });
+  }
+  await page.click("#torso-presets button[data-preset=reset]");
 
   const text = await page.textContent("#consult");
   const jargon = text.match(/\b(Pa|chi2|mu|lambda|a_deg)\b|χ²/g);

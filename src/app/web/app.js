@@ -395,7 +395,31 @@ function showPatientModel(job) {
   $("#goal-run").disabled = !canRun("plan");
 }
 
+// Both breasts of the last plan job on the chest, standing, before and/or after.
+async function showTorso(mode) {
+  const plan = state.planJob;
+  if (!plan) return void ($("#view-legend").textContent = "both breasts: find the plans in the Consultation first");
+  const file = async (name) => {
+    const r = await fetch(`/api/jobs/${plan.id}/files/${name}`);
+    return r.ok ? r.json() : null;
+  };
+  const breasts = [];
+  for (const side of plan.summary.plan.sides) {
+    const model = plan.summary.patient_model.sides.find((x) => x.side === side.side);
+    if (!side.plan.ok) continue;
+    breasts.push({ side: side.side, notch: model.notch_m,
+                   pre: await file(`${side.side}_preop_surface_standing.json`),
+                   post: await file(`${side.side}_postop_surface_standing.json`),
+                   nipples: { pre: model.nipple_standing_m, post: side.plan.post_standing.nipple_m } });
+  }
+  view.showTorso(breasts, mode);
+  app.torsoShown = { mode, breasts: breasts.length, vertices: view.drawnVertices() };
+}
+
 function showPlans(job) {
+  state.planJob = job;
+  $("#view-mode").value = "torso-both";
+  showSurfaces();
   $("#goal-result").innerHTML = planTables(job.summary);
   const unmet = job.summary.plan.sides.flatMap((s) => s.unmet.map((u) => `${s.side}: ${u}`));
   message($("#goal-message"), unmet.length ? "Not every goal can be met: " + unmet.join("; ") : "Every goal is met.",
@@ -562,7 +586,12 @@ async function showSurfaces() {
   $("#view-legend").textContent = { plan: "red: tissue removed; green: P1, P1'; violet: P2",
     side: "in profile: before (skin colour, left), after (blue, right)",
     overlay: "in profile: before (translucent), after (blue)",
-    scan: "the scanned breast (full, not mirrored) simulated in the chosen posture" }[mode];
+    scan: "the scanned breast (full, not mirrored) simulated in the chosen posture",
+    "torso-both": "standing, from the sternal notch (blue dot): before (skin colour, left), after (blue, right)",
+    "torso-before": "standing, before surgery, from the sternal notch (blue dot)",
+    "torso-after": "standing, after surgery, from the sternal notch (blue dot)" }[mode];
+  $("#torso-presets").hidden = !mode.startsWith("torso");
+  if (mode.startsWith("torso")) return showTorso(mode.slice(6));
   if (mode === "scan") return showScanSurface();
   if (mode === "plan" || !state.result) return checkIncision();
   const p = $("#view-posture").value;
@@ -665,6 +694,9 @@ async function main() {
   $("#scan-cancel").addEventListener("click", () => cancel("scan"));
   $("#view-mode").addEventListener("change", showSurfaces);
   $("#view-posture").addEventListener("change", showSurfaces);
+  for (const b of document.querySelectorAll("#torso-presets button"))
+    b.addEventListener("click", () => { view.preset(b.dataset.preset); app.preset = b.dataset.preset; });
+  $("#torso-presets").hidden = true;
   $("#export-case").addEventListener("click", exportCase);
   $("#export-report").addEventListener("click", makeReport);
   $("#export-measurements").addEventListener("click", () =>

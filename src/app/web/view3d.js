@@ -120,6 +120,42 @@ export class View3D {
     this.render();
   }
 
+  // Both breasts on the chest, in the patient's frame (mm; the sternal notch
+  // at the origin, the patient's left to +x, up +y, forward +z): each of
+  // `breasts` ({side, notch, pre, post}: the notch in that breast's frame,
+  // its standing surfaces) placed by its notch, the right one mirrored.
+  // `mode`: "before", "after", or "both" (before on the left, after on the
+  // right of the picture, 360 mm apart). The chest is a translucent plane;
+  // the notch and the nipples are marked.
+  showTorso(breasts, mode) {
+    this.clear();
+    const stages = mode === "both" ? [["pre", -180], ["post", 180]] : [[mode === "after" ? "post" : "pre", 0]];
+    for (const [stage, shift] of stages) {
+      for (const b of breasts) {
+        const doc = b[stage];
+        if (!doc) continue;
+        const place = (p) => [(b.side === "left" ? 1 : -1) * (p[0] - b.notch[0]) * 1e3 + shift, (p[2] - b.notch[2]) * 1e3,
+                              p[1] * 1e3];
+        this.content.add(placedMesh(doc, stage === "pre" ? SKIN : POST, place));
+        if (b.nipples && b.nipples[stage]) this.content.add(marker(place(b.nipples[stage]), 0x3b3040));
+      }
+      this.content.add(marker([shift, 0, 0], 0x2471a3)); // the sternal notch
+      this.content.add(chestPlane(shift));
+    }
+    if (this.framed !== "torso") this.frame(new THREE.Vector3(0, 0.1, 1), 0.7);
+    this.framed = "torso";
+    this.render();
+  }
+
+  // The camera's presets of the torso: front, side (from the patient's left),
+  // oblique, below; "reset" frames it from the front again.
+  preset(name) {
+    const d = { front: [0, 0.1, 1], side: [1, 0.05, 0], oblique: [0.7, 0.15, 0.7], below: [0, -1, 0.35],
+                reset: [0, 0.1, 1] }[name];
+    if (d) this.frame(new THREE.Vector3(...d), 0.7);
+    this.render();
+  }
+
   // The number of vertices drawn (meshes of the content).
   drawnVertices() {
     let n = 0;
@@ -246,6 +282,37 @@ function baseRing(R) {
 
 // A half model (mirror_x, the default) is drawn with its mirror image, a full
 // breast (mirror_x false: a scan) as it is.
+// A surface document drawn with its vertices (a half model mirrored) mapped
+// by `place` (model point [m] -> scene [x, y, z] in mm).
+function placedMesh(doc, colour, place) {
+  const v = doc.vertices, t = doc.triangles, pos = [];
+  const sides = doc.mirror_x === false ? [1] : [1, -1];
+  for (const side of sides)
+    for (let i = 0; i < v.length; i += 3) pos.push(...place([side * v[i], v[i + 1], v[i + 2]]));
+  const n = v.length / 3, idx = [...t];
+  if (sides.length === 2) for (let k = 0; k < t.length; k += 3) idx.push(t[k] + n, t[k + 2] + n, t[k + 1] + n);
+  const g = new THREE.BufferGeometry();
+  g.setAttribute("position", new THREE.Float32BufferAttribute(pos, 3));
+  g.setIndex(idx);
+  g.computeVertexNormals();
+  return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: colour, side: THREE.DoubleSide }));
+}
+
+function marker(p, colour) {
+  const m = new THREE.Mesh(new THREE.SphereGeometry(4, 12, 8), new THREE.MeshBasicMaterial({ color: colour }));
+  m.position.set(...p);
+  return m;
+}
+
+// The chest wall: a translucent plane z = 0 from the notch down, centred at x = `shift`.
+function chestPlane(shift) {
+  const m = new THREE.Mesh(new THREE.PlaneGeometry(340, 400),
+                           new THREE.MeshBasicMaterial({ color: 0xd9c8be, transparent: true, opacity: 0.35,
+                                                         side: THREE.DoubleSide, depthWrite: false }));
+  m.position.set(shift, -170, -1);
+  return m;
+}
+
 function surfaceMesh(doc, colour, shift, opacity) {
   const v = doc.vertices, t = doc.triangles, pos = [];
   const sides = doc.mirror_x === false ? [1] : [1, -1];
