@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: LGPL-3.0-or-later
-# `breastsim plan` on the five synthetic patients of bench/clinic/patients.json:
-# per patient and breast, whether every target is met, the result against
-# each target and the wall time (docs/CLINIC.md, "Figures").
-# Usage: bash bench/plan_patients.sh BIN [OUT]   (about 10 minutes on 2 cores)
+# `breastsim plan` on the five synthetic patients of bench/clinic/patients.json
+# (docs/CLINIC.md, "Figures"). Per breast: the hidden incision is evaluated
+# (`plan --incision`) and its post-operative SN-N, N-IMF (to 0.1 cm) and
+# weight (to 1 g) become the targets of a search (`plan --target`), which
+# must meet them: reachable by construction. Then an unreachable target
+# (post-op SN-N 15 cm) must exit 4 naming it. Prints per breast the targets,
+# the result and the wall time; writes OUT/plan_patients.json.
+# Usage: bash bench/plan_patients.sh BIN [OUT]   (about 15 minutes on 2 cores)
 set -eu
 BIN="$1"; OUT="${2:-$(mktemp -d)}"
 HERE="$(cd "$(dirname "$0")" && pwd)"
@@ -11,31 +15,44 @@ mkdir -p "$OUT"
 /usr/bin/python3 - "$BIN" "$OUT" "$HERE/clinic/patients.json" <<'PY'
 import json, os, subprocess, sys, time
 bin_, out, spec = sys.argv[1:4]
+
+def plan(pf, name, args):
+    t0 = time.time()
+    r = subprocess.run([bin_, "-q", "plan", pf, "--out", os.path.join(out, name)] + args, capture_output=True, text=True)
+    if r.returncode not in (0, 4):
+        sys.exit(f"{name}: exit {r.returncode}\n{r.stderr}")
+    return r, json.load(open(os.path.join(out, name, "plan.json"))), time.time() - t0
+
 rows = []
 for p in json.load(open(spec))["patients"]:
-    doc = {"format": "breastsim-patient/1", "id": p["id"], "units": p["units"],
-           "left": p["left"], "right": p["right"]}
+    doc = {k: p[k] for k in ("id", "units", "left", "right")}
+    doc["format"] = "breastsim-patient/1"
     pf = os.path.join(out, p["id"] + ".json")
     json.dump(doc, open(pf, "w"))
-    args = [bin_, "-q", "plan", pf, "--out", os.path.join(out, p["id"])]
-    for side, t in p["targets"].items():
-        args += [a for k, v in t.items() for a in ("--target", f"{side}.{k}={v}")]
-    t0 = time.time()
-    r = subprocess.run(args, capture_output=True, text=True)
-    wall = time.time() - t0
-    if r.returncode not in (0, 4):
-        sys.exit(f"{p['id']}: exit {r.returncode}\n{r.stderr}")
-    plan = json.load(open(os.path.join(out, p["id"], "plan.json")))
-    for s in plan["sides"]:
+    for side, inc in p["hidden"].items():
+        _, hidden, _ = plan(pf, f"{p['id']}-{side}-hidden", ["--incision", f"{side}." + ",".join(map(str, inc))])
+        h = hidden["sides"][0]["plan"]
+        if not h["ok"]:
+            sys.exit(f"{p['id']} {side}: the hidden incision is not operable: {h['error']}")
+        t = {"sn_n": round(h["post_standing"]["sn_n_mm"] / 10, 1), "n_imf": round(h["post_standing"]["n_imf_mm"] / 10, 1),
+             "grams": round(h["surgical"]["resection_g"])}
+        args = ["--target", f"{side}.sn_n={t['sn_n']}cm", "--target", f"{side}.n_imf={t['n_imf']}cm",
+                "--target", f"{side}.grams={t['grams']}"]
+        r, found, wall = plan(pf, f"{p['id']}-{side}", args)
+        s = found["sides"][0]
         post, surg = s["plan"].get("post_standing", {}), s["plan"].get("surgical", {})
-        got = {"sn_n_mm": post.get("sn_n_mm"), "n_imf_mm": post.get("n_imf_mm"),
-               "resection_g": surg.get("resection_g"), "lower_pole_share": post.get("lower_pole_share")}
-        rows.append({"patient": p["id"], "side": s["side"], "met": s["met"], "targets": s["targets"],
-                     "result": {k: got[k] for k in s["targets"]}, "unmet": s["unmet"],
-                     "searched": len(s["searched"]), "wall_s": wall})
-        fmt = ", ".join(f"{k} {got[k]:.1f} (target {v})" for k, v in s["targets"].items())
-        print(f"{p['id']} {s['side']:5}: {'met' if s['met'] else 'NOT met'}: {fmt}; {len(s['searched'])} plans; patient {wall:.0f} s")
+        got = {"sn_n": post.get("sn_n_mm", 0) / 10, "n_imf": post.get("n_imf_mm", 0) / 10, "grams": surg.get("resection_g", 0)}
+        r4, _, _ = plan(pf, f"{p['id']}-{side}-unreachable", ["--target", f"{side}.sn_n=15cm"])
+        refused = r4.returncode == 4 and "post-operative SN-N: target 15.0 cm, closest" in r4.stderr
+        rows.append({"patient": p["id"], "side": side, "hidden_incision": inc, "targets": t, "result": got,
+                     "met": s["met"], "unmet": s["unmet"], "searched": len(s["searched"]), "wall_s": wall,
+                     "unreachable_refused": refused})
+        print(f"{p['id']} {side:5}: {'met' if s['met'] else 'NOT met'}: SN-N {got['sn_n']:.1f} (target {t['sn_n']}) cm, "
+              f"N-IMF {got['n_imf']:.1f} (target {t['n_imf']}) cm, {got['grams']:.0f} (target {t['grams']}) g; "
+              f"{len(s['searched'])} surgeries, {wall:.0f} s; SN-N 15 cm refused: {refused}", flush=True)
 json.dump(rows, open(os.path.join(out, "plan_patients.json"), "w"), indent=1)
 met = sum(r["met"] for r in rows)
-print(f"met: {met} of {len(rows)} breasts; results in {out}")
+patients = len({r["patient"] for r in rows if all(q["met"] for q in rows if q["patient"] == r["patient"])})
+print(f"met: {met} of {len(rows)} breasts, {patients} of 5 patients; unreachable refused: "
+      f"{sum(r['unreachable_refused'] for r in rows)} of {len(rows)}; results in {out}")
 PY

@@ -20,7 +20,7 @@ namespace
 struct PlanOptions
 {
   std::string patient_file, case_file;
-  std::vector<std::string> sets, targets;
+  std::vector<std::string> sets, targets, incisions;
   double tolerance_mm = 1.0;
   bool symmetric = false;
   OutputOption out;
@@ -38,6 +38,9 @@ Command add_plan_command(CLI::App& root)
                   "[left.|right.]key=value: sn_n=21cm, n_imf=7cm (post-op standing), grams=400 (resection), "
                   "lower_pole=0.55 (repeatable; without a side, for both)")
       ->allow_extra_args(false);
+  app->add_option("--incision", o->incisions,
+                  "[left.|right.]a_deg,s,h,d (deg, m): evaluate this incision in surgical terms, no search (expert)")
+      ->allow_extra_args(false);
   app->add_flag("--symmetric", o->symmetric,
                 "the second breast aims at the first's post-op SN-N, N-IMF and volume");
   app->add_option("--case", o->case_file, "case file for the material, mesh and solver (default: every default)");
@@ -52,6 +55,8 @@ Command add_plan_command(CLI::App& root)
             std::set<std::string> named_sides; // sides a target names; the others' targets apply where there are landmarks
             for (const auto& t : o->targets)
               clinic::add_target_text(targets, named_sides, t);
+            for (const auto& i : o->incisions)
+              clinic::add_incision_text(targets, named_sides, i);
             const clinic::Patient p = clinic::read_patient(o->patient_file);
             for (auto it = targets.begin(); it != targets.end();)
               it = p.sides.count(it->first) || named_sides.count(it->first) ? std::next(it) : targets.erase(it);

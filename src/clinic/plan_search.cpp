@@ -197,16 +197,61 @@ std::vector<std::string> trade_offs(const std::vector<PlanOutcome>& searched, co
   return out;
 }
 
+namespace
+{
+/// NLopt's Nelder-Mead on the first `n` unit coordinates from `start` (the
+/// fold's depth held at `ud` when n = 2), at most `evals` surgeries; stops
+/// when every target is within half its tolerance. Returns the best
+/// objective and leaves its point in `start`.
+double nelder_mead(Search& search, std::array<double, 3>& start, unsigned n, int evals, double ud)
+{
+  std::pair<Search*, double> context{&search, ud};
+  nlopt::opt opt(nlopt::LN_NELDERMEAD, n);
+  opt.set_lower_bounds(std::vector<double>(n, 0.0));
+  opt.set_upper_bounds(std::vector<double>(n, 1.0));
+  opt.set_initial_step(0.1);
+  opt.set_maxeval(evals);
+  opt.set_stopval(0.25);
+  opt.set_xtol_abs(1e-3);
+  opt.set_min_objective(
+      [](const std::vector<double>& x, std::vector<double>&, void* data)
+      {
+        auto* c = static_cast<std::pair<Search*, double>*>(data);
+        return (*c->first)({x[0], x[1], x.size() > 2 ? x[2] : c->second});
+      },
+      &context);
+  std::vector<double> x(start.begin(), start.begin() + n);
+  double f = std::numeric_limits<double>::infinity();
+  try
+  {
+    opt.optimize(x, f);
+  }
+  catch (const nlopt::roundoff_limited&)
+  {
+  }
+  // The best point seen (NLopt's x is its last best, equal to it).
+  for (unsigned k = 0; k < n; ++k)
+    start[k] = x[k];
+  return f;
+}
+} // namespace
+
 SidePlan plan_side(const SideModel& m, const PlanTargets& t, const std::filesystem::path& scratch,
                    const std::filesystem::path& final_dir, MPI_Comm comm)
 {
+  if (t.incision) // the surgeon's own incision: no search
+  {
+    SidePlan p{m.side, t, evaluate_plan(m, *t.incision, m.config, final_dir, comm), {}, {}, {}};
+    p.best.objective = plan_objective(p.best, t);
+    p.searched = {p.best};
+    p.unmet = unmet_targets(p.best, t);
+    return p;
+  }
   Config search_case = m.config;
   search_case.set("postures.names", std::vector<std::string>{"standing"});
   search_case.set("postures.theta_deg", std::vector<double>{});
   Search search(m, t, search_case, scratch, comm);
-  // A 4 x 4 grid in (s, h) at the case's fold, then Nelder-Mead from its best
-  // point, in (s, h) or, with two or more free targets besides the weight,
-  // also in the fold's depth d.
+  // A 4 x 4 grid in (s, h) at the case's fold depth.
   const double ud = SearchBox{m.config.number("geometry.R"), 0}.unit_depth(IncisionSpec::from(m.config).d);
   std::array<double, 3> best{0.5, 0.5, ud};
   double best_f = std::numeric_limits<double>::infinity();
@@ -214,37 +259,13 @@ SidePlan plan_side(const SideModel& m, const PlanTargets& t, const std::filesyst
     for (double uh : {0.125, 0.375, 0.625, 0.875})
       if (const double f = search({us, uh, ud}); f < best_f)
         best_f = f, best = {us, uh, ud};
-  const int free_targets = t.sn_n.has_value() + t.n_imf.has_value() + t.lower_pole.has_value();
-  const unsigned n = free_targets >= 2 ? 3 : 2;
+  // Nelder-Mead in (s, h) from the grid's best point; then, when two or
+  // more targets besides the weight are still missed, in (s, h, d) from there.
   if (best_f > 1.0 && best_f < 1e6)
-  {
-    std::pair<Search*, double> context{&search, ud}; // the search and the fold's depth when d is held
-    nlopt::opt opt(nlopt::LN_NELDERMEAD, n);
-    opt.set_lower_bounds(std::vector<double>(n, 0.0));
-    opt.set_upper_bounds(std::vector<double>(n, 1.0));
-    opt.set_initial_step(0.1);
-    opt.set_maxeval(n == 3 ? 24 : 16);
-    opt.set_stopval(0.25); // every target within half its tolerance
-    opt.set_xtol_abs(1e-3);
-    opt.set_min_objective(
-        [](const std::vector<double>& x, std::vector<double>&, void* data)
-        {
-          auto* s = static_cast<std::pair<Search*, double>*>(data);
-          return (*s->first)({x[0], x[1], x.size() > 2 ? x[2] : s->second});
-        },
-        &context);
-    std::vector<double> x{best[0], best[1]};
-    if (n == 3)
-      x.push_back(best[2]);
-    double f = 0;
-    try
-    {
-      opt.optimize(x, f);
-    }
-    catch (const nlopt::roundoff_limited&)
-    {
-    }
-  }
+    best_f = nelder_mead(search, best, 2, 16, ud);
+  const int free_targets = t.sn_n.has_value() + t.n_imf.has_value() + t.lower_pole.has_value();
+  if (free_targets >= 2 && best_f > 1.0 && best_f < 1e6)
+    nelder_mead(search, best, 3, 16, ud);
   SidePlan p;
   p.side = m.side;
   p.targets = t;

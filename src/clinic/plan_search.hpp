@@ -6,8 +6,9 @@
 // finds the incision that meets them. The weight fixes the keel's angle a
 // (angle_for_grams, geometry only); the new nipple's height s and D's
 // height h are searched, each evaluation one surgery solved standing: a
-// grid over (s, h), then NLopt's Nelder-Mead from its best point, also in
-// the new fold's depth d when two or more targets besides the weight are set.
+// grid over (s, h), then NLopt's Nelder-Mead from its best point, then
+// also in the new fold's depth d when two or more targets besides the
+// weight are set and still missed.
 #include "patient_fit.hpp"
 #include "surgical_terms.hpp"
 #include <filesystem>
@@ -23,7 +24,10 @@ struct PlanTargets
   double length_tolerance = 5e-3;      ///< [m]
   double grams_tolerance = 0.05;       ///< relative
   double share_tolerance = 0.03;
-  bool empty() const { return !sn_n && !n_imf && !grams && !lower_pole; }
+  /// The surgeon's own incision in the model's terms (the expert view):
+  /// evaluated as it is, not searched; the targets, if any, are compared.
+  std::optional<IncisionSpec> incision;
+  bool empty() const { return !sn_n && !n_imf && !grams && !lower_pole && !incision; }
 };
 
 /// One evaluated plan: the incision, its surgical terms and the post-op standing breast.

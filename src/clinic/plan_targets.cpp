@@ -91,6 +91,29 @@ void add_target_text(std::map<std::string, PlanTargets>& all, std::set<std::stri
     set_target(all[side], key, v, name);
 }
 
+void add_incision_text(std::map<std::string, PlanTargets>& all, std::set<std::string>& named, const std::string& item)
+{
+  std::vector<std::string> sides = {"left", "right"};
+  std::string list = item;
+  if (const auto dot = item.find('.'); dot != std::string::npos && (item.rfind("left.", 0) == 0 || item.rfind("right.", 0) == 0))
+  {
+    sides = {item.substr(0, dot)};
+    list = item.substr(dot + 1);
+    named.insert(sides[0]);
+  }
+  const auto v = split_list(list);
+  if (v.size() != 4)
+    throw InputError(fmt::format("--incision '{}': expected [left.|right.]a_deg,s,h,d (deg, m), e.g. 30,0.02,0.025,0.045",
+                                 shorten(item)));
+  IncisionSpec in;
+  in.a_deg = number(v[0], "--incision a_deg");
+  in.s = number(v[1], "--incision s");
+  in.h = number(v[2], "--incision h");
+  in.d = number(v[3], "--incision d");
+  for (const auto& side : sides)
+    all[side].incision = in;
+}
+
 std::map<std::string, PlanTargets> targets_from_json(const nlohmann::json& j)
 {
   if (!j.is_object() || j.empty())

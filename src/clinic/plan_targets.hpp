@@ -18,6 +18,10 @@ void set_target(PlanTargets& t, const std::string& key, double value, const std:
 /// side: both; the sides named go into `named`).
 void add_target_text(std::map<std::string, PlanTargets>& all, std::set<std::string>& named, const std::string& item);
 
+/// `[left.|right.]a_deg,s,h,d` of the command line (deg, m): the surgeon's
+/// own incision of that breast (or both), evaluated without a search.
+void add_incision_text(std::map<std::string, PlanTargets>& all, std::set<std::string>& named, const std::string& item);
+
 /// The app's targets document, lengths in mm.
 std::map<std::string, PlanTargets> targets_from_json(const nlohmann::json& j);
 } // namespace breastsim::clinic

@@ -50,6 +50,23 @@ assert (case["a_deg"], case["s"], case["h"], case["d"]) == (inc["a_deg"], inc["s
 print("plan: met, SN-N", round(post["sn_n_mm"], 1), "mm,", round(plan["surgical"]["resection_g"], 1), "g")
 PY
 
+# The surgeon's own incision, evaluated in surgical terms without a search:
+# the same numbers as `surgery` on the patient's case with that incision.
+"$BIN" -q plan "$CASES/patient_example.json" "${coarse[@]}" --incision right.28,0.03,0.04,0.04 \
+  --out "$work/own" > /dev/null
+"$BIN" -q surgery "$work/patient/case_right.toml" --set incision.a_deg=28 --set incision.s=0.03 \
+  --set incision.h=0.04 --set incision.d=0.04 --out "$work/own_surgery" > /dev/null
+/usr/bin/python3 - "$work/own" "$work/own_surgery/summary.json" <<'PY'
+import json, sys, os
+p = json.load(open(os.path.join(sys.argv[1], "plan.json")))["sides"][0]
+s = json.load(open(sys.argv[2]))
+assert p["met"] and len(p["searched"]) == 1 and p["plan"]["incision"]["a_deg"] == 28, p
+assert abs(p["plan"]["surgical"]["resection_g"] - 970e3 * s["resected_volume_m3"]) < 1e-6, p["plan"]["surgical"]
+standing = [q for q in s["postop"] if q["theta_deg"] == 0][0]
+assert max(abs(a - b) for a, b in zip(standing["nipple_m"], p["plan"]["post_standing"]["nipple_m"])) < 1e-9
+print("own incision: evaluated as `surgery` computes it")
+PY
+
 # An unreachable target (a nipple 15 cm from the notch): exit 4, the target
 # named with how close it came.
 set +e
