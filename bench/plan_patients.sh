@@ -5,7 +5,8 @@
 # (`plan --incision`) and its post-operative SN-N, N-IMF (to 0.1 cm) and
 # weight (to 1 g) become the targets of a search (`plan --target`), which
 # must meet them: reachable by construction. Then an unreachable target
-# (post-op SN-N 15 cm) must exit 4 naming it. Prints per breast the targets,
+# (a 2000 g resection, more than any of these breasts weighs) must exit 4
+# naming it with the weights in reach. Prints per breast the targets,
 # the result and the wall time; writes OUT/plan_patients.json.
 # Usage: bash bench/plan_patients.sh BIN [OUT]   (about 15 minutes on 2 cores)
 set -eu
@@ -42,14 +43,14 @@ for p in json.load(open(spec))["patients"]:
         s = found["sides"][0]
         post, surg = s["plan"].get("post_standing", {}), s["plan"].get("surgical", {})
         got = {"sn_n": post.get("sn_n_mm", 0) / 10, "n_imf": post.get("n_imf_mm", 0) / 10, "grams": surg.get("resection_g", 0)}
-        r4, _, _ = plan(pf, f"{p['id']}-{side}-unreachable", ["--target", f"{side}.sn_n=15cm"])
-        refused = r4.returncode == 4 and "post-operative SN-N: target 15.0 cm, closest" in r4.stderr
+        r4, _, _ = plan(pf, f"{p['id']}-{side}-unreachable", ["--target", f"{side}.grams=2000"])
+        refused = r4.returncode == 4 and "a resection of 2000 g is out of reach" in r4.stderr
         rows.append({"patient": p["id"], "side": side, "hidden_incision": inc, "targets": t, "result": got,
                      "met": s["met"], "unmet": s["unmet"], "searched": len(s["searched"]), "wall_s": wall,
                      "unreachable_refused": refused})
         print(f"{p['id']} {side:5}: {'met' if s['met'] else 'NOT met'}: SN-N {got['sn_n']:.1f} (target {t['sn_n']}) cm, "
               f"N-IMF {got['n_imf']:.1f} (target {t['n_imf']}) cm, {got['grams']:.0f} (target {t['grams']}) g; "
-              f"{len(s['searched'])} surgeries, {wall:.0f} s; SN-N 15 cm refused: {refused}", flush=True)
+              f"{len(s['searched'])} surgeries, {wall:.0f} s; 2000 g refused: {refused}", flush=True)
 json.dump(rows, open(os.path.join(out, "plan_patients.json"), "w"), indent=1)
 met = sum(r["met"] for r in rows)
 patients = len({r["patient"] for r in rows if all(q["met"] for q in rows if q["patient"] == r["patient"])})
