@@ -11,7 +11,7 @@ namespace
 {
 constexpr std::size_t max_pictures = 8, max_caption = 200, max_png = 4u << 20;
 
-const char* const style = R"(
+const char* const style_text = R"(
 body { font: 11pt/1.35 system-ui, sans-serif; color: #222; margin: 2em auto; max-width: 60em; }
 h1 { font-size: 1.5em; margin-bottom: 0.1em; } h2 { font-size: 1.15em; margin: 1.2em 0 0.3em; }
 .meta { color: #555; } .hint { color: #555; font-size: 0.9em; }
@@ -20,6 +20,7 @@ td, th { border: 1px solid #bbb; padding: 0.15em 0.5em; text-align: right; }
 th { background: #eee; } td:first-child, th:first-child { text-align: left; }
 .ok { color: #1e7d3a; } .off { color: #b9770e; }
 .pictures { display: flex; flex-wrap: wrap; gap: 1em; }
+.page { break-before: page; }
 figure { margin: 0; width: 48%; } figure img { width: 100%; border: 1px solid #ccc; }
 figcaption { font-size: 0.9em; color: #444; }
 @page { size: A4; margin: 15mm; }
@@ -112,6 +113,13 @@ std::string calibration_section(const JobRecord* cal)
   return html + "</table>";
 }
 
+} // namespace
+
+const char* report_style()
+{
+  return style_text;
+}
+
 std::string pictures_section(const std::vector<ReportPicture>& pictures)
 {
   if (pictures.empty())
@@ -123,7 +131,6 @@ std::string pictures_section(const std::vector<ReportPicture>& pictures)
                         html_escape(p.caption), p.png_base64);
   return html + "</div>";
 }
-} // namespace
 
 std::string html_escape(const std::string& text)
 {
@@ -221,7 +228,7 @@ std::string report_html(const JobRecord& surgery, const JobRecord* calibration,
       "<h2>Plan</h2>{3}<h2>Result</h2><p class=\"keep\">Resected volume <b data-key=\"resected_volume_cm3\">{4}"
       "</b> cm³, weight <b data-key=\"resected_weight_g\">{5}</b> g (ρ = {6} kg/m³); volume before {7} cm³, "
       "after {8} cm³; largest suture gap {9:.3f} mm.</p>{10}{11}{12}</body></html>\n",
-      surgery.id, style, html_escape(surgery.finished), plan_table(c), f1(s.at("resected_volume_cm3")),
+      surgery.id, style_text, html_escape(surgery.finished), plan_table(c), f1(s.at("resected_volume_cm3")),
       f1(s.at("resected_weight_g")), g4(s.at("tissue_rho_kg_m3")), f1(s.at("volume_pre_cm3")),
       f1(s.at("volume_post_cm3")), s.at("max_suture_gap_mm").get<double>(), postures_table(s),
       calibration_section(calibration), pictures_section(pictures));

@@ -30,6 +30,10 @@ std::vector<ReportPicture> report_pictures(const nlohmann::json& request);
 /// calibration) or nullptr.
 std::string report_html(const JobRecord& surgery, const JobRecord* calibration,
                         const std::vector<ReportPicture>& pictures);
+/// The reports' CSS (screen and A4 print; class "page" starts a new page).
+const char* report_style();
+/// The pictures as figures with their captions ("" without pictures).
+std::string pictures_section(const std::vector<ReportPicture>& pictures);
 /// `text` with &, <, >, " and ' escaped for HTML.
 std::string html_escape(const std::string& text);
 /// The bytes of base64 `text` (RFC 4648 alphabet, padding optional but,

@@ -3,6 +3,7 @@
 #include "errors.hpp"
 #include "http_reply.hpp"
 #include "job_id.hpp"
+#include "consult_report.hpp"
 #include "report.hpp"
 #include <cmath>
 #include <fstream>
@@ -64,10 +65,18 @@ void add_report_routes(httplib::Server& server, JobStore& store)
   server.Post(R"(/api/jobs/([0-9a-f]{16})/report)", [&](const httplib::Request& req, httplib::Response& res) {
     const std::string id = req.matches[1];
     const auto job = store.get(id);
-    if (!job || job->kind != "surgery" || job->state != JobState::done)
-      return reply_error(res, 404, "no finished surgery job with this id");
+    if (!job || (job->kind != "surgery" && job->kind != "plan") || job->state != JobState::done)
+      return reply_error(res, 404, "no finished surgery or plan job with this id");
     with_json_body(req, res, [&](const nlohmann::json& body) {
       const auto pictures = report_pictures(body);
+      if (job->kind == "plan") // the consultation's report: for the patient and for the record
+      {
+        if (!body.value("calibration", nlohmann::json()).is_null())
+          throw InputError("calibration: a plan's report names no calibration (its models are fitted to landmarks)");
+        write_atomically(store.folder(id) / "report.html", consult_report_html(*job, pictures));
+        store.update(id, [](JobRecord& r) { r.files["report.html"] = "report.html"; });
+        return nlohmann::json{{"ok", true}, {"url", "/api/jobs/" + id + "/files/report.html"}};
+      }
       const auto calibration = named_calibration(store, body, *job);
       write_atomically(store.folder(id) / "report.html",
                        report_html(*job, calibration ? &*calibration : nullptr, pictures));

@@ -5,7 +5,8 @@
 // `breastsim patient` on the same file -> goals after surgery for each
 // breast -> the plans, met, with the numbers of the CLI's `breastsim plan`
 // -> the symmetry table -> both breasts on the chest, before | after, from
-// each camera preset. At 1024 and 1920 px nothing of the consultation is
+// each camera preset -> the report for the patient and for the record,
+// printed to PDF. At 1024 and 1920 px nothing of the consultation is
 // cut off, and it speaks no model jargon. Screenshots into SHOT_DIR.
 // Usage: node consult_test.js URL MEASUREMENTS_JSON SHOT_DIR BREASTSIM   (NODE_PATH: playwright-core)
 "use strict";
@@ -113,6 +114,32 @@ async function walk(page, errors, work) {
     await page.screenshot({ path: path.join(shots, `0-torso-${preset}.png`) });
   }
   await page.click("#torso-presets button[data-preset=reset]");
+
+  // The report: for the patient (plain words, her ID, the date, grams per
+  // breast, pictures) and for the record; printed to PDF.
+  await page.click("#consult-report");
+  await page.waitForSelector("#consult-report-open", { timeout: 60000 });
+  const href = await page.getAttribute("#consult-report-open", "href");
+  const tab = await page.context().newPage();
+  try {
+    await tab.goto(new URL(href, url).href);
+    const forPatient = await tab.textContent("#for-patient");
+    check((await tab.textContent('[data-key="patient-id"]')) === "example-asymmetric" &&
+          /^\d{4}-\d{2}-\d{2}$/.test(await tab.textContent('[data-key="date"]')), "the report names the patient and the date");
+    for (const s of plan.sides)
+      check((await tab.textContent(`[data-key="${s.side}-grams"]`)) === `${s.plan.surgical.resection_g.toFixed(0)} g`,
+            `the report gives the ${s.side} breast's grams, the CLI's`);
+    const words = forPatient.match(/\b(Pa|chi2|mu|lambda|a_deg|R|H)\b|χ²/g);
+    check(!words && /cannot tell you/.test(forPatient) && (await tab.$$("#for-patient img")).length === 3,
+          `the patient's page: plain words, three pictures, the limits (${words || "no jargon"})`);
+    check(/moduli x/.test(await tab.textContent("#for-record")), "the record's page keeps the model's terms");
+    await tab.screenshot({ path: path.join(shots, "0-consult-report.png"), fullPage: true });
+    const pdf = path.join(shots, "consult-report.pdf");
+    await tab.pdf({ path: pdf, format: "A4", printBackground: true });
+    check(fs.readFileSync(pdf).subarray(0, 5).toString() === "%PDF-", `the report prints to PDF (${fs.statSync(pdf).size} bytes)`);
+  } finally {
+    await tab.close();
+  }
 
   const text = await page.textContent("#consult");
   const jargon = text.match(/\b(Pa|chi2|mu|lambda|a_deg)\b|χ²/g);

@@ -196,6 +196,8 @@ def clinic(api, patient_file, out):
     m = rec["summary"]["patient_model"]
     check([x["side"] for x in m["sides"]] == ["left", "right"] and all(x["largest_error_mm"] <= 1 for x in m["sides"]),
           "patient job: both breasts within 1 mm of their landmarks")
+    s, r = api.json("POST", f"/api/jobs/{rec['id']}/report", {"pictures": []})
+    check(s == 404 and "surgery or plan" in r["error"], f"a patient job has no report: 404 ({r})")
     json.dump(rec, open(out, "w"))
 
 

@@ -413,11 +413,37 @@ async function showTorso(mode) {
                    nipples: { pre: model.nipple_standing_m, post: side.plan.post_standing.nipple_m } });
   }
   view.showTorso(breasts, mode);
+  state.torso = { breasts };
   app.torsoShown = { mode, breasts: breasts.length, vertices: view.drawnVertices() };
+}
+
+// The consultation's report: pictures of both breasts before | after (front
+// and side) from the 3D view, and the plan job's numbers (written by the server).
+async function consultReport() {
+  const job = state.planJob;
+  if (!job) return;
+  $("#consult-report").disabled = true;
+  $("#view-mode").value = "torso-both";
+  await showSurfaces();
+  const front = view.snapshot(900, 560, [0, 0.1, 1]);
+  const pictures = [{ caption: "both breasts standing, from the front: before (left) | after (right)", png: front }];
+  for (const breast of state.torso.breasts) { // each breast alone from its own side, before and after overlaid
+    view.showTorso([breast], "overlay");
+    pictures.push({ caption: `the ${breast.side} breast standing, from its side: before (translucent), after (blue)`,
+                    png: view.snapshot(600, 560, [breast.side === "left" ? 1 : -1, 0.05, 0.15], 0.3) });
+  }
+  await showSurfaces();
+  const r = await api("POST", `/api/jobs/${job.id}/report`, { pictures });
+  $("#consult-report").disabled = false;
+  if (r.status !== 200) return message($("#consult-report-message"), r.json.error);
+  message($("#consult-report-message"), "");
+  $("#consult-report-links").innerHTML = `<a id="consult-report-open" href="${r.json.url}" target="_blank">open the report</a>` +
+    ` (print it, or save it as PDF)`;
 }
 
 function showPlans(job) {
   state.planJob = job;
+  $("#consult-report").disabled = false;
   $("#view-mode").value = "torso-both";
   showSurfaces();
   $("#goal-result").innerHTML = planTables(job.summary);
@@ -589,7 +615,8 @@ async function showSurfaces() {
     scan: "the scanned breast (full, not mirrored) simulated in the chosen posture",
     "torso-both": "standing, from the sternal notch (blue dot): before (skin colour, left), after (blue, right)",
     "torso-before": "standing, before surgery, from the sternal notch (blue dot)",
-    "torso-after": "standing, after surgery, from the sternal notch (blue dot)" }[mode];
+    "torso-after": "standing, after surgery, from the sternal notch (blue dot)",
+    "torso-overlay": "standing, before (translucent) and after (blue) overlaid" }[mode];
   $("#torso-presets").hidden = !mode.startsWith("torso");
   if (mode.startsWith("torso")) return showTorso(mode.slice(6));
   if (mode === "scan") return showScanSurface();
@@ -680,6 +707,7 @@ async function main() {
   $("#model-cancel").addEventListener("click", () => cancel("patient"));
   $("#goal-run").addEventListener("click", findPlans);
   $("#goal-cancel").addEventListener("click", () => cancel("plan"));
+  $("#consult-report").addEventListener("click", consultReport);
   $("#run").addEventListener("click", runSurgery);
   $("#surgery-on-scan").addEventListener("change", () => { $("#run").disabled = !canRun("surgery"); });
   $("#cancel").addEventListener("click", () => cancel("surgery"));

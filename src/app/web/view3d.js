@@ -72,11 +72,11 @@ export class View3D {
   }
 
   // The scene drawn at w x h pixels, seen from `direction` (scene axes: x
-  // lateral, y up, z out of the chest) if given: a PNG, base64 without the
-  // data: prefix. The view is left as it was.
-  snapshot(w, h, direction) {
+  // lateral, y up, z out of the chest) if given, framed with `margin`
+  // (frame()): a PNG, base64 without the data: prefix. The view is left as it was.
+  snapshot(w, h, direction, margin = 0.4) {
     const camera = this.camera.clone(), target = this.controls.target.clone();
-    if (direction) this.frame(new THREE.Vector3(...direction), 0.4);
+    if (direction) this.frame(new THREE.Vector3(...direction), margin);
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
@@ -124,21 +124,23 @@ export class View3D {
   // at the origin, the patient's left to +x, up +y, forward +z): each of
   // `breasts` ({side, notch, pre, post}: the notch in that breast's frame,
   // its standing surfaces) placed by its notch, the right one mirrored.
-  // `mode`: "before", "after", or "both" (before on the left, after on the
-  // right of the picture, 360 mm apart). The chest is a translucent plane;
+  // `mode`: "before", "after", "both" (before on the left, after on the
+  // right of the picture, 360 mm apart) or "overlay" (before translucent). The chest is a translucent plane;
   // the notch and the nipples are marked.
   showTorso(breasts, mode) {
     this.clear();
-    const stages = mode === "both" ? [["pre", -180], ["post", 180]] : [[mode === "after" ? "post" : "pre", 0]];
+    const stages = mode === "both" ? [["pre", -180], ["post", 180]]
+      : mode === "overlay" ? [["pre", 0], ["post", 0]] : [[mode === "after" ? "post" : "pre", 0]];
     for (const [stage, shift] of stages) {
       for (const b of breasts) {
         const doc = b[stage];
         if (!doc) continue;
         const place = (p) => [(b.side === "left" ? 1 : -1) * (p[0] - b.notch[0]) * 1e3 + shift, (p[2] - b.notch[2]) * 1e3,
                               p[1] * 1e3];
-        this.content.add(placedMesh(doc, stage === "pre" ? SKIN : POST, place));
+        this.content.add(placedMesh(doc, stage === "pre" ? SKIN : POST, place, mode === "overlay" && stage === "pre" ? 0.45 : 1));
         if (b.nipples && b.nipples[stage]) this.content.add(marker(place(b.nipples[stage]), 0x3b3040));
       }
+      if (stage === "post" && mode === "overlay") continue; // one notch and chest for the overlay
       this.content.add(marker([shift, 0, 0], 0x2471a3)); // the sternal notch
       this.content.add(chestPlane(shift));
     }
@@ -284,7 +286,7 @@ function baseRing(R) {
 // breast (mirror_x false: a scan) as it is.
 // A surface document drawn with its vertices (a half model mirrored) mapped
 // by `place` (model point [m] -> scene [x, y, z] in mm).
-function placedMesh(doc, colour, place) {
+function placedMesh(doc, colour, place, opacity = 1) {
   const v = doc.vertices, t = doc.triangles, pos = [];
   const sides = doc.mirror_x === false ? [1] : [1, -1];
   for (const side of sides)
@@ -295,7 +297,8 @@ function placedMesh(doc, colour, place) {
   g.setAttribute("position", new THREE.Float32BufferAttribute(pos, 3));
   g.setIndex(idx);
   g.computeVertexNormals();
-  return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: colour, side: THREE.DoubleSide }));
+  return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: colour, side: THREE.DoubleSide,
+                                                           transparent: opacity < 1, opacity }));
 }
 
 function marker(p, colour) {
