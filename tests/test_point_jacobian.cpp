@@ -43,7 +43,12 @@ struct Column
   std::size_t rows = 0;
 };
 
-/// Compare column j of `J` with central differences of step h in y_j.
+/// Compare column j of `J` with central differences of step h in y_j. A
+/// row that differs by more than 1e-5 of the column's scale is compared
+/// again with the step h / 10: the distance to the skin is C1 but not C2
+/// where the closest point moves from a triangle onto an edge, and a
+/// stencil that straddles such a place errs by O(h); an exact column agrees
+/// at one of the two steps, a wrong one at neither.
 Column compare(PointEvaluator& ev, const Config& base, const std::vector<Free>& frees,
                const std::vector<double>& y, const Matrix& J, std::size_t j)
 {
@@ -61,6 +66,7 @@ Column compare(PointEvaluator& ev, const Config& base, const std::vector<Free>& 
   for (std::size_t i = 0; i < r0.size(); ++i)
     scale = std::max(scale, std::abs(J[i][j]));
   EXPECT_GT(scale, 0.0) << frees[j].name << " moves nothing";
+  std::vector<std::size_t> again;
   for (std::size_t i = 0; i < r0.size(); ++i)
   {
     const double central = (rp[i] - rm[i]) / (2 * h), forward = (rp[i] - r0[i]) / h,
@@ -70,8 +76,20 @@ Column compare(PointEvaluator& ev, const Config& base, const std::vector<Free>& 
       ++col.kinks;
       continue;
     }
-    col.worst = std::max(col.worst, std::abs(J[i][j] - central) / scale);
+    const double error = std::abs(J[i][j] - central) / scale;
+    if (error > 1e-5)
+      again.push_back(i);
+    else
+      col.worst = std::max(col.worst, error);
   }
+  int any = again.empty() ? 0 : 1; // the solves below are collective
+  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (!any)
+    return col;
+  const auto rp2 = at(h / 10), rm2 = at(-h / 10);
+  for (std::size_t i : again)
+    col.worst = std::max(col.worst, std::min(std::abs(J[i][j] - (rp[i] - rm[i]) / (2 * h)),
+                                             std::abs(J[i][j] - (rp2[i] - rm2[i]) / (h / 5))) / scale);
   return col;
 }
 

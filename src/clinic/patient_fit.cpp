@@ -2,6 +2,7 @@
 #include "patient_fit.hpp"
 #include "errors.hpp"
 #include "forward_model.hpp"
+#include "least_squares.hpp"
 #include "log.hpp"
 #include "model.hpp"
 #include "on_root.hpp"
@@ -79,36 +80,6 @@ double cap_height_for_arc(double R, double arc)
   for (int k = 0; k < 60; ++k)
     (length(0.5 * (lo + hi)) < arc ? lo : hi) = 0.5 * (lo + hi);
   return 0.5 * (lo + hi);
-}
-
-std::vector<double> solve_small(std::vector<std::vector<double>> A, std::vector<double> b)
-{
-  const std::size_t n = b.size();
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    std::size_t p = k;
-    for (std::size_t i = k + 1; i < n; ++i)
-      if (std::abs(A[i][k]) > std::abs(A[p][k]))
-        p = i;
-    std::swap(A[k], A[p]);
-    std::swap(b[k], b[p]);
-    for (std::size_t i = k + 1; i < n; ++i)
-    {
-      const double f = A[i][k] / A[k][k];
-      for (std::size_t j = k; j < n; ++j)
-        A[i][j] -= f * A[k][j];
-      b[i] -= f * b[k];
-    }
-  }
-  std::vector<double> x(n);
-  for (std::size_t k = n; k-- > 0;)
-  {
-    double s = b[k];
-    for (std::size_t j = k + 1; j < n; ++j)
-      s -= A[k][j] * x[j];
-    x[k] = s / A[k][k];
-  }
-  return x;
 }
 
 /// The nipple's height below the fold [m] in the middle of a ptosis grade's
@@ -254,23 +225,22 @@ double norm2(const std::vector<double>& r)
   return s;
 }
 
-/// The Levenberg-Marquardt step (J^T J + lambda diag(J^T J)) dy = -J^T r.
+/// The Levenberg-Marquardt step (J^T J + lambda diag(J^T J)) dy = -J^T r
+/// (J stored by columns); zero if J^T J is singular (the caller then damps more).
 std::vector<double> lm_step(const std::vector<std::vector<double>>& J, const std::vector<double>& r, double lambda)
 {
-  const std::size_t n = J.size(), m = r.size();
-  std::vector<std::vector<double>> A(n, std::vector<double>(n, 0.0));
-  std::vector<double> b(n, 0.0);
+  const std::size_t n = J.size();
+  calibration::Matrix A(n, std::vector<double>(n, 0.0));
+  std::vector<double> g(n, 0.0);
   for (std::size_t i = 0; i < n; ++i)
   {
     for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t k = 0; k < r.size(); ++k)
         A[i][j] += J[i][k] * J[j][k];
-    for (std::size_t k = 0; k < m; ++k)
-      b[i] -= J[i][k] * r[k];
+    for (std::size_t k = 0; k < r.size(); ++k)
+      g[i] += J[i][k] * r[k];
   }
-  for (std::size_t i = 0; i < n; ++i)
-    A[i][i] *= 1 + lambda;
-  return solve_small(A, b);
+  return calibration::gauss_newton_step(A, g, lambda).value_or(std::vector<double>(n, 0.0));
 }
 } // namespace
 

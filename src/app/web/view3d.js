@@ -282,10 +282,9 @@ function baseRing(R) {
   return new THREE.Line(new THREE.BufferGeometry().setFromPoints(pts), new THREE.LineBasicMaterial({ color: 0x555555 }));
 }
 
-// A half model (mirror_x, the default) is drawn with its mirror image, a full
-// breast (mirror_x false: a scan) as it is.
-// A surface document drawn with its vertices (a half model mirrored) mapped
-// by `place` (model point [m] -> scene [x, y, z] in mm).
+// A surface document drawn with its vertices mapped by `place` (model point
+// [m] -> scene [x, y, z] in mm): a half model (mirror_x, the default) with
+// its mirror image, a full breast (mirror_x false: a scan) as it is.
 function placedMesh(doc, colour, place, opacity = 1) {
   const v = doc.vertices, t = doc.triangles, pos = [];
   const sides = doc.mirror_x === false ? [1] : [1, -1];
@@ -316,20 +315,7 @@ function chestPlane(shift) {
   return m;
 }
 
+// A surface document in model coordinates, moved `shift` mm out of the chest.
 function surfaceMesh(doc, colour, shift, opacity) {
-  const v = doc.vertices, t = doc.triangles, pos = [];
-  const sides = doc.mirror_x === false ? [1] : [1, -1];
-  for (const side of sides)
-    for (let i = 0; i < v.length; i += 3) {
-      const p = toScene([side * v[i], v[i + 1], v[i + 2]]);
-      pos.push(p.x, p.y, p.z + shift);
-    }
-  const n = v.length / 3, idx = [...t];
-  if (sides.length === 2) for (let k = 0; k < t.length; k += 3) idx.push(t[k] + n, t[k + 2] + n, t[k + 1] + n);
-  const g = new THREE.BufferGeometry();
-  g.setAttribute("position", new THREE.Float32BufferAttribute(pos, 3));
-  g.setIndex(idx);
-  g.computeVertexNormals();
-  return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: colour, side: THREE.DoubleSide,
-                                                           transparent: opacity < 1, opacity }));
+  return placedMesh(doc, colour, (p) => { const q = toScene(p); return [q.x, q.y, q.z + shift]; }, opacity);
 }
