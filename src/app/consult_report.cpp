@@ -116,6 +116,33 @@ std::string record_breast(const std::string& side, const json& model, const json
       model.at("largest_error_mm").get<double>(), incision, targets_text(plan.at("targets")),
       plan.at("met").get<bool>() ? "all met" : "not met: " + plan.at("unmet").dump(), plan.at("searched").size());
 }
+/// The body's line for the record: height, weight, body surface area and
+/// each breast's resection per m^2 of it, bra size (those given).
+std::string record_body(const json& model, const json& plans)
+{
+  if (!model.contains("body"))
+    return "";
+  const auto& b = model.at("body");
+  std::string s;
+  auto add = [&](const std::string& part) { s += (s.empty() ? "" : ", ") + part; };
+  if (b.contains("height_m"))
+    add(fmt::format("height {:.0f} cm", 100 * b.at("height_m").get<double>()));
+  if (b.contains("weight_kg"))
+    add(fmt::format("weight {:.1f} kg", b.at("weight_kg").get<double>()));
+  if (b.contains("bsa_m2"))
+  {
+    const double bsa = b.at("bsa_m2");
+    add(fmt::format("body surface area {:.2f} m^2 (Mosteller)", bsa));
+    for (const auto& p : plans)
+      if (p.at("plan").at("ok").get<bool>())
+        add(fmt::format("{} resection <span data-key=\"{}-g-per-m2\">{:.0f}</span> g/m^2",
+                        p.at("side").get<std::string>(), p.at("side").get<std::string>(),
+                        p.at("plan").at("surgical").at("resection_g").get<double>() / bsa));
+  }
+  if (b.contains("bra_size"))
+    add("bra " + html_escape(b.at("bra_size").get<std::string>()));
+  return "<p id=\"record-body\">Body: " + s + ".</p>";
+}
 } // namespace
 
 std::string consult_report_html(const JobRecord& plan, const std::vector<ReportPicture>& pictures)
@@ -137,8 +164,9 @@ std::string consult_report_html(const JobRecord& plan, const std::vector<ReportP
       "<p class=\"meta\">Patient <b data-key=\"patient-id\">{0}</b>, <span data-key=\"date\">{2}</span>. Measured "
       "standing; lengths along the skin.</p>{3}{4}{5}{6}</section>"
       "<section id=\"for-record\" class=\"page\"><h1>For the record</h1><p class=\"meta\">breastsim plan job {7}, "
-      "solved {8}; the model's terms (docs/CLINIC.md).</p>{9}</section></body></html>\n",
+      "solved {8}; the model's terms (docs/CLINIC.md).</p>{10}{9}</section></body></html>\n",
       html_escape(id.empty() ? "(no ID)" : id), report_style(), html_escape(date), pictures_section(pictures), patient,
-      symmetry(models, plans), limits, plan.id, html_escape(plan.finished), record);
+      symmetry(models, plans), limits, plan.id, html_escape(plan.finished), record,
+      record_body(plan.summary.at("patient_model"), plans));
 }
 } // namespace breastsim::app

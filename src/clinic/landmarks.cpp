@@ -87,21 +87,77 @@ struct Reader
                        s.nipple_midline / unit, unit_name, s.base_width / 2 / unit, unit_name));
     return s;
   }
+
+  Body body(const nlohmann::json& j) const
+  {
+    const std::vector<std::string> keys = {"height", "weight_kg", "bra_size"};
+    if (!j.is_object())
+      fail("body", "must be an object (height, weight_kg, bra_size)");
+    for (const auto& [k, _] : j.items())
+      if (std::find(keys.begin(), keys.end(), k) == keys.end())
+      {
+        const std::string guess = closest_match(k, keys);
+        fail("body." + k, "is not allowed" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)")
+                              + "; allowed: height (in the file's unit), weight_kg, bra_size");
+      }
+    Body b;
+    auto number = [&](const std::string& k, double scale, double lo, double hi, const std::string& unit)
+    {
+      const auto& v = j.at(k);
+      if (!v.is_number() || !std::isfinite(v.get<double>()) || !(v.get<double>() * scale >= lo) ||
+          !(v.get<double>() * scale <= hi))
+        fail("body." + k, fmt::format("= {} {} is out of range: [{}, {}] {} (adults)", shorten(v.dump()), unit,
+                                      lo / scale, hi / scale, unit));
+      return v.get<double>() * scale;
+    };
+    if (j.contains("height"))
+      b.height = number("height", unit, 1.2, 2.2, unit_name);
+    if (j.contains("weight_kg"))
+      b.weight_kg = number("weight_kg", 1.0, 30, 250, "kg");
+    if (j.contains("bra_size"))
+    {
+      if (!j.at("bra_size").is_string() || j.at("bra_size").get<std::string>().size() > 16)
+        fail("body.bra_size", "must be a text of at most 16 characters (e.g. \"36DD\" or \"80E\")");
+      b.bra_size = j.at("bra_size").get<std::string>();
+    }
+    return b;
+  }
 };
 } // namespace
+
+std::optional<double> Body::surface_area() const
+{
+  if (!height || !weight_kg)
+    return std::nullopt;
+  return std::sqrt(100 * *height * *weight_kg / 3600); // Mosteller
+}
+
+nlohmann::json to_json(const Body& b)
+{
+  nlohmann::json j = nlohmann::json::object();
+  if (b.height)
+    j["height_m"] = *b.height;
+  if (b.weight_kg)
+    j["weight_kg"] = *b.weight_kg;
+  if (!b.bra_size.empty())
+    j["bra_size"] = b.bra_size;
+  if (const auto a = b.surface_area())
+    j["bsa_m2"] = *a;
+  return j;
+}
 
 Patient patient_from_json(const nlohmann::json& j, const std::string& source)
 {
   Reader rd{source, 0, ""};
   if (!j.is_object())
     rd.fail("(document)", "must be a JSON object");
-  const std::vector<std::string> top = {"format", "id", "units", "left", "right"};
+  const std::vector<std::string> top = {"format", "id", "units", "left", "right", "body"};
   for (const auto& [k, _] : j.items())
     if (std::find(top.begin(), top.end(), k) == top.end())
     {
       const std::string guess = closest_match(k, top);
       rd.fail(k, "is not allowed" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)")
-                     + "; allowed: format, id, units, left, right");
+                     + "; allowed: format, id, units, left, right, body");
     }
   if (j.value("format", "") != "breastsim-patient/1")
     rd.fail("format", "must be \"breastsim-patient/1\"");
@@ -123,6 +179,8 @@ Patient patient_from_json(const nlohmann::json& j, const std::string& source)
       p.sides[side] = rd.side(j.at(side), side);
   if (p.sides.empty())
     rd.fail("left", "is missing: give the landmarks of the left and/or the right breast");
+  if (j.contains("body"))
+    p.body = rd.body(j.at("body"));
   return p;
 }
 

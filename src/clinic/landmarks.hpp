@@ -22,10 +22,22 @@ struct SideLandmarks
   std::optional<int> ptosis_grade; ///< 0 (none) to 3
 };
 
+/// The patient's body, optional: height and weight give the body surface
+/// area (Mosteller), against which resections are weighed (grams per m^2).
+struct Body
+{
+  std::optional<double> height;    ///< [m]
+  std::optional<double> weight_kg; ///< [kg]
+  std::string bra_size;            ///< as the patient gives it, e.g. "36DD" (recorded, not modelled)
+  /// Mosteller: BSA = sqrt(height [cm] x weight [kg] / 3600) m^2; needs both.
+  std::optional<double> surface_area() const;
+};
+
 struct Patient
 {
   std::string id;                             ///< the patient's ID (as the clinic writes it)
   std::map<std::string, SideLandmarks> sides; ///< "left" and/or "right"
+  std::optional<Body> body;
 };
 
 /// An accepted range of a landmark [m] and why it is bounded so.
@@ -43,4 +55,5 @@ const std::vector<LandmarkRange>& landmark_ranges();
 Patient patient_from_json(const nlohmann::json& j, const std::string& source);
 Patient read_patient(const std::filesystem::path& file);
 nlohmann::json to_json(const SideLandmarks& s); ///< in mm
+nlohmann::json to_json(const Body& b);          ///< height_m, weight_kg, bra_size, bsa_m2 (those given)
 } // namespace breastsim::clinic

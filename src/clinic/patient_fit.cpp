@@ -10,6 +10,10 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <tuple>
 
 namespace breastsim::clinic
 {
@@ -307,9 +311,10 @@ bool lm_move(SideFit& fit, const std::vector<std::vector<double>>& J, std::vecto
   return false;
 }
 
-/// InputError when width or N-IMF is farther than the tolerance, or the grade is missed.
+/// InputError when width or N-IMF is farther than the tolerance, or the grade
+/// is missed; `morph_miss`: the largest width or N-IMF error on the fit's own (morphed) mesh.
 void check_reached(const SideModel& out, const std::vector<double>& rr, const std::vector<double>& y,
-                   double tolerance)
+                   double tolerance, double morph_miss)
 {
   const auto& target = out.target;
   const char* names[] = {"base width", "N-IMF"};
@@ -321,6 +326,13 @@ void check_reached(const SideModel& out, const std::vector<double>& rr, const st
       missed += fmt::format("{}{} of {:.1f} cm (the closest it came is {:.1f} cm)", missed.empty() ? "" : " and ",
                             names[k], 100 * wanted, 100 * (wanted + rr[k]));
   }
+  if (!missed.empty() && morph_miss <= tolerance) // the shape fits; the generated mesh does not
+    throw InputError(fmt::format("patient {}: the entered {} is reached within {:.2f} mm on the fitted (morphed) mesh "
+                                 "but not within {:.1f} mm on meshes generated at that shape (the surgery's): the "
+                                 "mesh is too coarse for this tolerance with this breast (geometry.mesh_size = "
+                                 "{:.1f} mm); use a finer mesh or a larger --tolerance",
+                                 out.side, missed, 1e3 * morph_miss, 1e3 * tolerance,
+                                 1e3 * out.config.number("geometry.mesh_size")));
   if (!missed.empty())
     throw InputError(fmt::format("patient {}: the model cannot reach the entered {} within {:.1f} mm (R = {:.1f} mm, "
                                  "H = {:.1f} mm{}; a cap's height is at most 1.5 R)",
@@ -352,20 +364,13 @@ void add_notes(SideModel& out, double tolerance)
 }
 } // namespace
 
-SideModel fit_side(const Config& base, const std::string& side, const SideLandmarks& target, double tolerance,
-                   MPI_Comm comm)
+namespace
 {
-  SideFit fit(base, target, comm);
-  std::vector<double> y = fit.initial();
-  auto [m, r] = fit.evaluate(y);
+/// Levenberg-Marquardt on `fit` from y until `done` or 20 moves; returns the moves made.
+int lm_fit(SideFit& fit, std::vector<double>& y, StandingMeasures& m, std::vector<double>& r,
+           const std::function<bool(const std::vector<double>&)>& done, const std::string& side)
+{
   double lambda = 1e-3;
-  // Done when width and N-IMF are within a quarter of the tolerance and the
-  // nipple within 2 mm of its grade's centre.
-  auto done = [&](const std::vector<double>& res)
-  {
-    return std::abs(res[0]) <= tolerance / 4 && std::abs(res[1]) <= tolerance / 4 &&
-           (res.size() < 3 || std::abs(res[2]) <= 2e-3);
-  };
   int it = 0;
   for (; it < 20 && !done(r); ++it)
   {
@@ -374,19 +379,63 @@ SideModel fit_side(const Config& base, const std::string& side, const SideLandma
     log::info("patient {}: iteration {}: width {:.1f} mm, N-IMF {:.1f} mm, largest error {:.2f} mm", side, it + 1,
               1e3 * m.landmarks.base_width, 1e3 * m.landmarks.n_imf, 1e3 * largest(r));
   }
-  fit.evaluate(y); // the surface of the final y
+  return it;
+}
+} // namespace
+
+SideModel fit_side(const Config& base, const std::string& side, const SideLandmarks& target, double tolerance,
+                   MPI_Comm comm)
+{
+  // Done when width and N-IMF are within a quarter of the tolerance and the
+  // nipple within 2 mm of its grade's centre.
+  auto done = [&](const std::vector<double>& res)
+  {
+    return std::abs(res[0]) <= tolerance / 4 && std::abs(res[1]) <= tolerance / 4 &&
+           (res.size() < 3 || std::abs(res[2]) <= 2e-3);
+  };
+  // The fit moves one mesh onto each shape (morph); the surgery meshes the
+  // final shape afresh, and a soft breast's landmarks differ by millimetres
+  // between two meshes of one size. So the fit is judged, and polished, on a
+  // mesh generated at its final shape: the mesh every later job solves.
+  auto fit = std::make_unique<SideFit>(base, target, comm);
+  std::vector<double> y = fit->initial();
+  auto [m, r] = fit->evaluate(y);
+  int it = lm_fit(*fit, y, m, r, done, side), solves = 0;
+  const double morph_miss = std::max(std::abs(r[0]), std::abs(r[1]));
+  // Of the fresh meshes, the one whose landmarks come closest.
+  struct Fresh
+  {
+    std::vector<double> y;
+    StandingMeasures m;
+    SkinSurface surface;
+    double miss = std::numeric_limits<double>::infinity();
+  } best;
+  const int rounds = 4;
+  for (int round = 0; round < rounds; ++round)
+  {
+    solves += fit->solves();
+    fit = std::make_unique<SideFit>(base, target, comm);
+    std::tie(m, r) = fit->evaluate(y);
+    if (largest(r) < best.miss)
+      best = {y, m, fit->surface(), largest(r)};
+    if (done(r) || round == rounds - 1)
+      break;
+    log::info("patient {}: the mesh generated at the fitted shape misses by {:.2f} mm; fitting on it", side,
+              1e3 * largest(r));
+    it += lm_fit(*fit, y, m, r, done, side);
+  }
   SideModel out;
   out.side = side;
   out.target = target;
-  out.config = fit.config(y);
-  out.stiffness_factor = fit.fits_stiffness() ? std::exp(y[2]) : 1.0;
+  out.config = fit->config(best.y);
+  out.stiffness_factor = fit->fits_stiffness() ? std::exp(best.y[2]) : 1.0;
   out.iterations = it;
-  const double notch_z = place_notch(fit.surface(), m.nipple, target.nipple_midline, target.sn_n, comm);
-  out.notch = {m.nipple[0] - target.nipple_midline, 0.0, notch_z};
-  out.achieved = measure_standing(fit.surface(), m.nipple, &out.notch, comm);
-  out.solves = fit.solves();
-  const auto rr = fit.residuals(out.achieved);
-  check_reached(out, rr, y, tolerance);
+  const double notch_z = place_notch(best.surface, best.m.nipple, target.nipple_midline, target.sn_n, comm);
+  out.notch = {best.m.nipple[0] - target.nipple_midline, 0.0, notch_z};
+  out.achieved = measure_standing(best.surface, best.m.nipple, &out.notch, comm);
+  out.solves = solves + fit->solves();
+  const auto rr = fit->residuals(out.achieved);
+  check_reached(out, rr, best.y, tolerance, morph_miss);
   out.largest_error = std::max({std::abs(rr[0]), std::abs(rr[1]), std::abs(out.achieved.landmarks.sn_n - target.sn_n)});
   add_notes(out, tolerance);
   return out;

@@ -53,7 +53,10 @@ struct SideModel
 /// derivatives in R and H by forward differences on the morphed mesh, in k
 /// from the tangent of the converged solve). Stops when width and N-IMF are
 /// within `tolerance` / 4 (and the nipple within 2 mm of its grade's
-/// centre) or after 20 iterations; throws InputError when width or N-IMF
+/// centre) or after 20 iterations. The fit moves one mesh (a morph); it is
+/// then judged, and polished in up to 3 more rounds, on a mesh generated at
+/// the fitted shape (the mesh the surgery solves), keeping the closest
+/// round. Throws InputError when width or N-IMF
 /// stays farther than `tolerance`, or the grade is not reached, naming the
 /// landmark and how close it came. The projection is compared, not fitted.
 SideModel fit_side(const Config& base, const std::string& side, const SideLandmarks& target,

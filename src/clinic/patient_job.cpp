@@ -9,7 +9,7 @@ namespace breastsim::clinic
 {
 PatientModel fit_patient(const Config& base, const Patient& p, double tolerance, MPI_Comm comm)
 {
-  PatientModel m{p.id, {}, tolerance};
+  PatientModel m{p.id, {}, tolerance, p.body};
   for (const auto& [side, landmarks] : p.sides)
   {
     log::info("patient: fitting the {} breast to its landmarks", side);
@@ -23,8 +23,11 @@ nlohmann::json to_json(const PatientModel& m)
   nlohmann::json sides = nlohmann::json::array();
   for (const auto& s : m.sides)
     sides.push_back(to_json(s));
-  return {{"format", "breastsim-patient-model/1"}, {"id", m.id}, {"tolerance_mm", 1e3 * m.tolerance},
-          {"sides", sides}};
+  nlohmann::json j = {{"format", "breastsim-patient-model/1"}, {"id", m.id}, {"tolerance_mm", 1e3 * m.tolerance},
+                      {"sides", sides}};
+  if (m.body)
+    j["body"] = to_json(*m.body);
+  return j;
 }
 
 std::string patient_table(const PatientModel& m)
@@ -54,6 +57,20 @@ std::string patient_table(const PatientModel& m)
                      s.target.ptosis_grade ? " (fitted to the ptosis grade)" : " (the case's moduli)", s.iterations, s.solves);
     for (const auto& n : s.notes)
       t += fmt::format("{}: note: {}\n", s.side, n);
+  }
+  if (m.body)
+  {
+    const auto& b = *m.body;
+    t += "body:";
+    if (b.height)
+      t += fmt::format(" height {:.0f} cm", 100 * *b.height);
+    if (b.weight_kg)
+      t += fmt::format(", weight {:.0f} kg", *b.weight_kg);
+    if (const auto a = b.surface_area())
+      t += fmt::format(", body surface area {:.2f} m^2 (Mosteller)", *a);
+    if (!b.bra_size.empty())
+      t += ", bra " + b.bra_size;
+    t += "\n";
   }
   return t;
 }

@@ -15,6 +15,7 @@ struct PatientModel
   std::string id;
   std::vector<SideModel> sides;
   double tolerance = 0; ///< the largest landmark error accepted [m]
+  std::optional<Body> body;
 };
 
 /// Collective. Fit every side of `p` on the case `base`; InputError when a

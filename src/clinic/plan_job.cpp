@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "plan_job.hpp"
+#include "plan_drawing.hpp"
 #include "errors.hpp"
 #include "log.hpp"
 #include "on_root.hpp"
@@ -62,6 +63,7 @@ PatientPlan plan_patient(const Config& base, const Patient& p, double tolerance,
   OutputDir dir(out, comm);
   PatientPlan plan;
   plan.patient = fit_patient(base, p, tolerance, comm);
+  std::vector<nlohmann::json> drawings;
   for (const auto& m : plan.patient.sides)
   {
     PlanTargets t = targets.count(m.side) ? targets.at(m.side) : PlanTargets{};
@@ -72,6 +74,7 @@ PatientPlan plan_patient(const Config& base, const Patient& p, double tolerance,
     log::info("plan: searching the {} breast's incision", m.side);
     const auto scratch = dir.path() / ("search-" + m.side);
     plan.sides.push_back(plan_side(m, t, scratch, dir.path() / m.side, comm));
+    drawings.push_back(plan_drawing(m, plan.sides.back().best, dir.path() / m.side, comm));
     if (rank_of(comm) == 0)
       std::filesystem::remove_all(scratch); // the search's own surgery folder, inside this run's staging
     Config chosen = m.config;
@@ -83,8 +86,11 @@ PatientPlan plan_patient(const Config& base, const Patient& p, double tolerance,
     write_text(dir.path() / ("case_" + m.side + ".toml"), chosen.to_toml(), comm);
   }
   nlohmann::json sides = nlohmann::json::array();
-  for (const auto& s : plan.sides)
-    sides.push_back(to_json(s));
+  for (std::size_t k = 0; k < plan.sides.size(); ++k)
+  {
+    sides.push_back(to_json(plan.sides[k]));
+    sides.back()["drawing"] = drawings[k];
+  }
   write_json(dir.path() / "patient_model.json", to_json(plan.patient), comm);
   write_json(dir.path() / "plan.json",
              {{"format", "breastsim-plan/1"}, {"id", p.id}, {"symmetric", symmetric}, {"met", plan.met()},
@@ -107,9 +113,11 @@ std::string plan_table(const PatientPlan& p)
       t += "  no operable plan: " + b.error + "\n";
       continue;
     }
+    const auto bsa = p.patient.body ? p.patient.body->surface_area() : std::nullopt;
     t += fmt::format("  marking (standing): new nipple at SN-N {:.1f} cm, vertical limb {:.1f} cm; "
-                     "resection {:.0f} g\n",
-                     100 * b.terms.new_nipple_sn_n, 100 * b.terms.vertical_limb, b.terms.resection_grams);
+                     "resection {:.0f} g{}\n",
+                     100 * b.terms.new_nipple_sn_n, 100 * b.terms.vertical_limb, b.terms.resection_grams,
+                     bsa ? fmt::format(" ({:.0f} g per m^2 of body surface)", b.terms.resection_grams / *bsa) : "");
     t += fmt::format("  model incision: a = {:.1f} deg, s = {:.1f} mm, h = {:.1f} mm, d = {:.1f} mm\n",
                      b.incision.a_deg, 1e3 * b.incision.s, 1e3 * b.incision.h, 1e3 * b.incision.d);
     auto row = [&](const char* name, double v, const std::optional<double>& target, double scale, const char* unit,

@@ -236,6 +236,40 @@ double nelder_mead(Search& search, std::array<double, 3>& start, unsigned n, int
 }
 } // namespace
 
+namespace
+{
+/// Why no searched incision removes `grams`: the range of weights over all
+/// of them, and where the most is removed; nothing if one could.
+std::optional<std::string> weight_out_of_reach(const std::vector<PlanOutcome>& searched, const Config& c, double grams)
+{
+  const HalfCapSpec cap = HalfCapSpec::from(c);
+  std::optional<WeightRange> all;
+  IncisionSpec heaviest;
+  for (const auto& o : searched)
+  {
+    try
+    {
+      const WeightRange w = weight_range(cap, o.incision, c.number("tissue.rho"));
+      if (w.least <= grams && grams <= w.most)
+        return std::nullopt;
+      if (!all || w.most > all->most)
+        heaviest = o.incision;
+      all = all ? WeightRange{std::min(all->least, w.least), std::max(all->most, w.most), 0, 0} : w;
+    }
+    catch (const InputError&)
+    {
+    }
+  }
+  if (!all)
+    return std::nullopt;
+  return fmt::format("a resection of {:.0f} g is out of reach for this breast: the {} incisions searched remove "
+                     "from {:.0f} g to {:.0f} g (the most with the new nipple at s = {:.1f} mm, D at h = {:.1f} mm, "
+                     "the fold at d = {:.1f} mm)",
+                     grams, searched.size(), all->least, all->most, 1e3 * heaviest.s, 1e3 * heaviest.h,
+                     1e3 * heaviest.d);
+}
+} // namespace
+
 SidePlan plan_side(const SideModel& m, const PlanTargets& t, const std::filesystem::path& scratch,
                    const std::filesystem::path& final_dir, MPI_Comm comm)
 {
@@ -272,10 +306,13 @@ SidePlan plan_side(const SideModel& m, const PlanTargets& t, const std::filesyst
   p.searched = search._all;
   const auto it = std::min_element(p.searched.begin(), p.searched.end(),
                                    [](const PlanOutcome& a, const PlanOutcome& b) { return a.objective < b.objective; });
-  if (!it->ok) // nothing operable: the first refusal says why (e.g. the weight's reachable range)
+  if (!it->ok) // nothing operable: the first refusal says why, the weight's by the whole search's range
   {
     p.best = *it;
-    p.unmet = unmet_targets(*it, t);
+    if (t.grams)
+      if (const auto why = weight_out_of_reach(p.searched, m.config, *t.grams))
+        p.best.error = *why;
+    p.unmet = unmet_targets(p.best, t);
     return p;
   }
   // The chosen plan with every posture of the case (standing first).

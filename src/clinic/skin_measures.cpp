@@ -97,11 +97,16 @@ double arc_length(const std::vector<Point>& p, std::size_t from)
   return L;
 }
 
-double nipple_to_fold(const SkinSurface& s, const Point& nipple, Point* fold)
+double nipple_to_fold(const SkinSurface& s, const Point& nipple, Point* fold, std::vector<Point>* path)
 {
   const Meridian m = skin_meridian(s, nipple);
   if (fold)
     *fold = m.points.back();
+  if (path)
+  {
+    *path = {nipple};
+    path->insert(path->end(), m.points.begin() + static_cast<std::ptrdiff_t>(m.nipple + 1), m.points.end());
+  }
   // From the nipple itself (it may lie between two meridian vertices after surgery).
   return distance(nipple, m.points[m.nipple + 1]) + arc_length(m.points, m.nipple + 1);
 }
@@ -126,7 +131,7 @@ double skin_height(const SkinSurface& s, double x, double z)
   return top;
 }
 
-double taut_tape(const SkinSurface& s, const Point& notch, const Point& nipple, double step)
+double taut_tape(const SkinSurface& s, const Point& notch, const Point& nipple, double step, std::vector<Point>* path)
 {
   // The profile (t, y) along the chest line from the notch to the nipple's
   // foot, ending at the nipple itself.
@@ -156,6 +161,12 @@ double taut_tape(const SkinSurface& s, const Point& notch, const Point& nipple, 
   double length = 0;
   for (std::size_t k = 1; k < hull.size(); ++k)
     length += std::hypot(hull[k][0] - hull[k - 1][0], hull[k][1] - hull[k - 1][1]);
+  if (path) // (t, y) back to the chest frame: notch + t (dx, 0, dz) / L + y e_y
+  {
+    path->clear();
+    for (const auto& [t, y] : hull)
+      path->push_back({notch[0] + t * dx / L, y, notch[2] + t * dz / L});
+  }
   return length;
 }
 

@@ -38,16 +38,20 @@ Meridian skin_meridian(const SkinSurface& s, const Point& nipple, double plane_t
 double arc_length(const std::vector<Point>& p, std::size_t from);
 
 /// Length of the skin from the nipple to the fold along the meridian [m]
-/// (N-IMF); `fold` receives the fold's deformed position.
-double nipple_to_fold(const SkinSurface& s, const Point& nipple, Point* fold = nullptr);
+/// (N-IMF); `fold` receives the fold's deformed position, `path` the
+/// tape's points from the nipple to the fold.
+double nipple_to_fold(const SkinSurface& s, const Point& nipple, Point* fold = nullptr,
+                      std::vector<Point>* path = nullptr);
 
 /// Outermost skin height y over the chest point (x, z) of the deformed
 /// half-model skin mirrored to x < 0; 0 where the skin does not cover it.
 double skin_height(const SkinSurface& s, double x, double z);
 
 /// A taut tape from the chest point `notch` = (x, 0, z) to the skin point
-/// `nipple` over the chest and the skin (SN-N) [m], sampled every `step` [m].
-double taut_tape(const SkinSurface& s, const Point& notch, const Point& nipple, double step = 5e-4);
+/// `nipple` over the chest and the skin (SN-N) [m], sampled every `step` [m];
+/// `path` receives the tape's corners from the notch to the nipple.
+double taut_tape(const SkinSurface& s, const Point& notch, const Point& nipple, double step = 5e-4,
+                 std::vector<Point>* path = nullptr);
 
 /// Width of the breast's base: twice the largest |x| of the deformed skin
 /// vertices whose reference lies on the chest [m].

@@ -393,6 +393,7 @@ async function main() {
   });
   try {
     const page = await browser.newPage();
+    await page.addInitScript(() => localStorage.setItem("breastsim.expert", "1")); // the model's steps
     const errors = [];
     page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
     page.on("pageerror", (e) => errors.push(String(e)));

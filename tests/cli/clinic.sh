@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: LGPL-3.0-or-later
 # `breastsim patient` and `breastsim plan` end to end (docs/CLINIC.md): both
-# breasts of the example patient within 1 mm of their landmarks; a plan
+# breasts of the example patient within the accepted tolerance of their
+# landmarks (or refused naming the mesh when only its own mesh fits); a plan
 # whose targets are reachable meets them and its numbers are those of its
 # own surgery folder; an unreachable target exits 4 naming the target and
 # how close it came; bad targets and landmarks exit 2 naming the key.
 set -eu
 BIN="$1"; CASES="$2"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-coarse=(--set geometry.mesh_size=0.012)
+# A 12 mm mesh: the soft, ptotic left breast's landmarks differ by up to
+# 2.5 mm between two meshes of nearby shapes, so the model is accepted within 2.5 mm.
+coarse=(--set geometry.mesh_size=0.012 --tolerance 2.5)
 
 "$BIN" -q patient "$CASES/patient_example.json" "${coarse[@]}" --out "$work/patient" > "$work/patient.txt"
 "$BIN" -q patient "$CASES/patient_example.json" "${coarse[@]}" --out "$work/patient" > /dev/null # replaced
@@ -19,11 +22,11 @@ assert [s["side"] for s in m["sides"]] == ["left", "right"], m
 for s in m["sides"]:
     t, a = s["target"], s["achieved"]
     for k in ("sn_n_mm", "n_imf_mm", "base_width_mm", "nipple_midline_mm"):
-        assert abs(a[k] - t[k]) <= 1.0, (s["side"], k, a[k], t[k])
-    assert s["largest_error_mm"] <= 1.0
+        assert abs(a[k] - t[k]) <= 2.5, (s["side"], k, a[k], t[k])
+    assert s["largest_error_mm"] <= (2.5 if s["side"] == "left" else 1.0), s
 left = m["sides"][0]
 assert left["achieved"]["ptosis_grade"] == 2 and left["stiffness_factor"] < 1
-print("patient: both breasts within 1 mm")
+print("patient: within", [round(s["largest_error_mm"], 2) for s in m["sides"]], "mm")
 PY
 test -s "$work/patient/case_left.toml"
 
@@ -64,8 +67,28 @@ assert p["met"] and len(p["searched"]) == 1 and p["plan"]["incision"]["a_deg"] =
 assert abs(p["plan"]["surgical"]["resection_g"] - 970e3 * s["resected_volume_m3"]) < 1e-6, p["plan"]["surgical"]
 standing = [q for q in s["postop"] if q["theta_deg"] == 0][0]
 assert max(abs(a - b) for a, b in zip(standing["nipple_m"], p["plan"]["post_standing"]["nipple_m"])) < 1e-9
-print("own incision: evaluated as `surgery` computes it")
+# The picture's tapes are the numbers' own: before, the patient model's
+# landmarks; after, the plan's; the marking starts at the new nipple A.
+m = json.load(open(os.path.join(sys.argv[1], "patient_model.json")))["sides"][1]
+d = p["drawing"]
+assert abs(d["before"]["sn_n_mm"] - m["achieved"]["sn_n_mm"]) < 0.01, (d["before"]["sn_n_mm"], m["achieved"])
+assert abs(d["before"]["n_imf_mm"] - m["achieved"]["n_imf_mm"]) < 0.01, (d["before"]["n_imf_mm"], m["achieved"])
+post = p["plan"]["post_standing"]
+assert abs(d["after"]["sn_n_mm"] - post["sn_n_mm"]) < 0.01 and abs(d["after"]["n_imf_mm"] - post["n_imf_mm"]) < 0.01
+assert len(d["marking"]) == 5 and d["marking"][0][0] == d["new_nipple"], d["marking"][0][:2]
+assert d["marking"][1][-1][0] == -d["marking"][0][-1][0] # the limbs mirror each other
+print("own incision: evaluated as `surgery` computes it; its drawing measures what the tables say")
 PY
+
+# A weight no incision reaches: exit 4, the range over the whole search named.
+set +e
+"$BIN" -q plan "$CASES/patient_example.json" "${coarse[@]}" --target right.grams=2000 \
+  --out "$work/plan5" > /dev/null 2> "$work/err5"
+rc=$?
+set -e
+test "$rc" = 4 || { echo "expected exit 4, got $rc"; cat "$work/err5"; exit 1; }
+grep -q "a resection of 2000 g is out of reach for this breast: the 16 incisions searched remove from" "$work/err5" \
+  || { cat "$work/err5"; exit 1; }
 
 # An unreachable target (a nipple 15 cm from the notch): exit 4, the target
 # named with how close it came.
@@ -89,5 +112,7 @@ expect2 "unknown target 'nipple'" plan "$CASES/patient_example.json" --target ni
 expect2 "out of range" plan "$CASES/patient_example.json" --target grams=9000 --out "$work/x"
 printf '{"format": "breastsim-patient/1", "units": "cm", "left": {"sn_n": 240, "n_imf": 9, "base_width": 13, "nipple_midline": 10}}' > "$work/bad.json"
 expect2 "'left.sn_n' = 240 cm is out of range: \[15, 45\] cm" patient "$work/bad.json" --out "$work/x"
+expect2 "the mesh is too coarse for this tolerance" patient "$CASES/patient_example.json" \
+  --set geometry.mesh_size=0.012 --tolerance 1 --out "$work/x"
 test ! -e "$work/x"
 echo "clinic: all checks hold"

@@ -285,11 +285,15 @@ function showSliderValues() {
 }
 
 // Timings as performance entries: "breastsim:first-view" (the page's panels and
-// the plan drawn), "breastsim:slider-redraw" (a slider's input -> the frame
+// the plan, or in the surgeon's view the torso, drawn), "breastsim:slider-redraw" (a slider's input -> the frame
 // with its planes).
 function redrawn(inputAt) {
   app.redraws += 1;
   if (inputAt) app.lastRedrawMs = performance.measure("breastsim:slider-redraw", { start: inputAt }).duration;
+  markFirstView();
+}
+
+function markFirstView() {
   if (performance.getEntriesByName("breastsim:first-view").length === 0) performance.mark("breastsim:first-view");
 }
 
@@ -380,16 +384,31 @@ function runCalibration() {
 // The consultation: the landmarks of both breasts (a patient job), then the goals (a plan job).
 function modelPatient() {
   state.patient = patientDocument($);
-  submit("patient", { kind: "patient", overrides: caseOverrides(), patient: state.patient });
+  state.tolerance = Number($("#model-tolerance").value);
+  submit("patient", { kind: "patient", overrides: caseOverrides(), patient: state.patient, tolerance_mm: state.tolerance });
 }
 
 function findPlans() {
   submit("plan", { kind: "plan", overrides: caseOverrides(), patient: state.patient, targets: goalTargets($),
-                   symmetric: $("#goal-symmetric").checked });
+                   symmetric: $("#goal-symmetric").checked, tolerance_mm: state.tolerance || 1 });
+}
+
+// The expert view: the model's own steps (1-6) and terms; off by default.
+function setExpert(on) {
+  document.body.classList.toggle("expert", on);
+  $("#expert").checked = on;
+  localStorage.setItem("breastsim.expert", on ? "1" : "");
+  const mode = $("#view-mode");
+  if (!on && mode.selectedOptions[0].classList.contains("expert-only")) mode.value = "torso-both";
+  else if (on && !state.planJob && mode.value.startsWith("torso")) mode.value = "plan";
+  else return;
+  view.framed = null;
+  showSurfaces();
 }
 
 function showPatientModel(job) {
   state.patientModel = job.summary.patient_model;
+  state.tolerance = state.patientModel.tolerance_mm;
   state.patient = job.request_patient || state.patient;
   $("#model-result").innerHTML = patientTable(state.patientModel);
   $("#goal-run").disabled = !canRun("plan");
@@ -398,7 +417,12 @@ function showPatientModel(job) {
 // Both breasts of the last plan job on the chest, standing, before and/or after.
 async function showTorso(mode) {
   const plan = state.planJob;
-  if (!plan) return void ($("#view-legend").textContent = "both breasts: find the plans in the Consultation first");
+  if (!plan) {
+    view.clear();
+    view.render();
+    markFirstView();
+    return void ($("#view-legend").textContent = "both breasts: find the plans in the Consultation first");
+  }
   const file = async (name) => {
     const r = await fetch(`/api/jobs/${plan.id}/files/${name}`);
     return r.ok ? r.json() : null;
@@ -410,11 +434,13 @@ async function showTorso(mode) {
     breasts.push({ side: side.side, notch: model.notch_m,
                    pre: await file(`${side.side}_preop_surface_standing.json`),
                    post: await file(`${side.side}_postop_surface_standing.json`),
-                   nipples: { pre: model.nipple_standing_m, post: side.plan.post_standing.nipple_m } });
+                   nipples: { pre: model.nipple_standing_m, post: side.plan.post_standing.nipple_m },
+                   drawing: side.drawing });
   }
-  view.showTorso(breasts, mode);
+  view.showTorso(breasts, mode, $("#view-tapes").checked);
   state.torso = { breasts };
-  app.torsoShown = { mode, breasts: breasts.length, vertices: view.drawnVertices() };
+  app.torsoShown = { mode, breasts: breasts.length, vertices: view.drawnVertices(), linked: !!view.split,
+                     drawings: breasts.filter((b) => b.drawing).length };
 }
 
 // The consultation's report: pictures of both breasts before | after (front
@@ -428,7 +454,7 @@ async function consultReport() {
   const front = view.snapshot(900, 560, [0, 0.1, 1]);
   const pictures = [{ caption: "both breasts standing, from the front: before (left) | after (right)", png: front }];
   for (const breast of state.torso.breasts) { // each breast alone from its own side, before and after overlaid
-    view.showTorso([breast], "overlay");
+    view.showTorso([breast], "overlay", false);
     pictures.push({ caption: `the ${breast.side} breast standing, from its side: before (translucent), after (blue)`,
                     png: view.snapshot(600, 560, [breast.side === "left" ? 1 : -1, 0.05, 0.15], 0.3) });
   }
@@ -613,11 +639,13 @@ async function showSurfaces() {
     side: "in profile: before (skin colour, left), after (blue, right)",
     overlay: "in profile: before (translucent), after (blue)",
     scan: "the scanned breast (full, not mirrored) simulated in the chosen posture",
-    "torso-both": "standing, from the sternal notch (blue dot): before (skin colour, left), after (blue, right)",
+    "torso-both": "standing, from the sternal notch (blue dot): before (skin colour, left view), after (blue, right view); the views turn together",
     "torso-before": "standing, before surgery, from the sternal notch (blue dot)",
     "torso-after": "standing, after surgery, from the sternal notch (blue dot)",
     "torso-overlay": "standing, before (translucent) and after (blue) overlaid" }[mode];
   $("#torso-presets").hidden = !mode.startsWith("torso");
+  // The posture of a finished surgery or scan; the torso is standing.
+  $("#view-posture").parentElement.hidden = mode.startsWith("torso") || $("#view-posture").options.length === 0;
   if (mode.startsWith("torso")) return showTorso(mode.slice(6));
   if (mode === "scan") return showScanSurface();
   if (mode === "plan" || !state.result) return checkIncision();
@@ -722,6 +750,8 @@ async function main() {
   $("#scan-cancel").addEventListener("click", () => cancel("scan"));
   $("#view-mode").addEventListener("change", showSurfaces);
   $("#view-posture").addEventListener("change", showSurfaces);
+  $("#view-tapes").addEventListener("change", showSurfaces);
+  $("#expert").addEventListener("change", () => setExpert($("#expert").checked));
   for (const b of document.querySelectorAll("#torso-presets button"))
     b.addEventListener("click", () => { view.preset(b.dataset.preset); app.preset = b.dataset.preset; });
   $("#torso-presets").hidden = true;
@@ -729,6 +759,7 @@ async function main() {
   $("#export-report").addEventListener("click", makeReport);
   $("#export-measurements").addEventListener("click", () =>
     download("measurements.json", JSON.stringify(measurementDocument(), null, 2), "application/json"));
+  setExpert(localStorage.getItem("breastsim.expert") === "1");
   await showSurfaces();
   await refreshPlans();
   for (const kind of ["calibrate", "surgery", "sweep", "scan", "patient", "plan"]) { // a reload reattaches to the running (or finished) jobs

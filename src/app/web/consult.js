@@ -15,10 +15,21 @@ export const GOALS = [
   ["grams", "Tissue removed", "g", 1], ["lower_pole", "Lower pole share (optional)", "%", 0.01],
 ];
 const PTOSIS = ["—", "0 none", "1 nipple at the fold", "2 nipple 1-3 cm below", "3 nipple lower still"];
-const TIPS = {
-  sn_n: "Tape from the sternal notch over the breast to the nipple, standing.",
-  n_imf: "Along the skin from the nipple down to the fold under the breast.",
-  lower_pole: "The share of the breast's volume below the nipple's height; about 55 % looks natural.",
+// One definition per number, the same as docs/CLINIC.md "Definitions": shown as each row's tooltip.
+export const TIPS = {
+  sn_n: "Sternal notch to nipple: a taut tape from the notch at the top of the breastbone to the nipple, standing.",
+  n_imf: "Nipple to fold: along the skin from the nipple straight down to the fold under the breast, standing.",
+  base_width: "Breast width: the breast's footprint on the chest, from its inner to its outer edge.",
+  nipple_midline: "Nipple to midline: the nipple's sideways distance from the middle of the chest (the notch's line).",
+  projection: "Projection: how far the breast stands out in front of the chest wall.",
+  ptosis: "Ptosis grade (Regnault) from the nipple's height against the fold: 0 more than 1 cm above it, 1 within 1 cm of it, 2 1-3 cm below, 3 more than 3 cm below.",
+  grams: "Tissue removed from this breast, in grams: the removed volume times the tissue's density (0.97 g/cm³ unless the case says otherwise).",
+  lower_pole: "Lower pole share: the share of the breast's volume (in front of the chest) that lies below the nipple's height, standing; about 55 % looks natural.",
+  new_nipple: "New nipple position, marked standing before surgery: the tape from the sternal notch to where the nipple will sit.",
+  limb: "Vertical limb: the length of each vertical line of the marking, from the new nipple down, standing before surgery.",
+  volume: "Breast volume: the breast's volume in front of the chest wall in its unloaded shape (as if weightless), in cm³; 1 cm³ of breast tissue weighs about 0.97 g.",
+  nipple_height: "Nipple below the notch: the nipple's height below the sternal notch, standing.",
+  bsa: "Body surface area from height and weight (Mosteller: the square root of height [cm] x weight [kg] / 3600); resections are weighed in grams per m² of it.",
 };
 
 const cm = (m) => (m === undefined || m === null ? "–" : (100 * m).toFixed(1));
@@ -32,7 +43,7 @@ function tableRows(rows, cell) {
 export function buildConsultForms(root) {
   root.querySelector("#landmarks tbody").innerHTML =
     tableRows(LANDMARKS, (k, s) => `<input type="number" step="0.1" id="lm-${s}-${k}">`) +
-    `<tr><td>Ptosis grade</td>` + SIDES.map((s) => `<td><select id="lm-${s}-ptosis">` +
+    `<tr title="${TIPS.ptosis}"><td>Ptosis grade</td>` + SIDES.map((s) => `<td><select id="lm-${s}-ptosis">` +
       PTOSIS.map((p, i) => `<option value="${i - 1}">${p}</option>`).join("") + "</select></td>").join("") + "</tr>";
   root.querySelector("#goals tbody").innerHTML =
     tableRows(GOALS, (k, s) => `<input type="number" step="any" id="goal-${s}-${k}">`);
@@ -54,6 +65,11 @@ export function patientDocument($) {
     if (Object.keys(side).length && g >= 0) side.ptosis_grade = g;
     if (Object.keys(side).length) doc[s] = side;
   }
+  const body = {};
+  if ($("#body-height").value !== "") body.height = Number($("#body-height").value);
+  if ($("#body-weight").value !== "") body.weight_kg = Number($("#body-weight").value);
+  if ($("#body-bra").value.trim()) body.bra_size = $("#body-bra").value.trim();
+  if (Object.keys(body).length) doc.body = body;
   return doc;
 }
 
@@ -62,6 +78,21 @@ export function fillPatient($, doc) {
   for (const s of SIDES)
     for (const [k] of LANDMARKS) $(`#lm-${s}-${k}`).value = doc[s] && doc[s][k] !== undefined ? doc[s][k] : "";
   for (const s of SIDES) $(`#lm-${s}-ptosis`).value = doc[s] && doc[s].ptosis_grade !== undefined ? doc[s].ptosis_grade : -1;
+  const body = doc.body || {}, scale = { mm: 0.1, cm: 1, m: 100 }[doc.units] || 1;
+  $("#body-height").value = body.height !== undefined ? body.height * scale : "";
+  $("#body-weight").value = body.weight_kg !== undefined ? body.weight_kg : "";
+  $("#body-bra").value = body.bra_size || "";
+}
+
+/// The body's line: height, weight, body surface area, bra size (those given).
+function bodyLine(body) {
+  if (!body) return "";
+  const parts = [];
+  if (body.bsa_m2 !== undefined) parts.push(`body surface area <span data-key="bsa">${body.bsa_m2.toFixed(2)}</span> m²`);
+  if (body.height_m !== undefined) parts.push(`height ${(100 * body.height_m).toFixed(0)} cm`);
+  if (body.weight_kg !== undefined) parts.push(`weight ${body.weight_kg} kg`);
+  if (body.bra_size) parts.push(`bra ${body.bra_size}`);
+  return parts.length ? `<p class="hint" id="model-body" title="${TIPS.bsa}">Body: ${parts.join(", ")}.</p>` : "";
 }
 
 /// The goals per side (the plan job's targets: mm, g, share).
@@ -83,16 +114,19 @@ export function patientTable(model) {
     const t = x.target[key], a = x.achieved[key];
     return `<td>${t === undefined ? "–" : mmcm(t)}</td><td data-key="${s}-${key}">${mmcm(a)}</td>`;
   };
-  const rows = LANDMARKS.map(([k, label]) => `<tr><td>${label}</td>${SIDES.map((s) => cell(s, k + "_mm")).join("")}</tr>`);
+  const rows = LANDMARKS.map(([k, label]) => `<tr title="${TIPS[k]}"><td>${label}</td>${SIDES.map((s) => cell(s, k + "_mm")).join("")}</tr>`);
   const grade = (s) => (bySide[s] ? `<td>${bySide[s].target.ptosis_grade ?? "–"}</td><td>${bySide[s].achieved.ptosis_grade}</td>` :
     "<td>–</td><td>–</td>");
-  rows.push(`<tr><td>Ptosis grade</td>${grade("left")}${grade("right")}</tr>`);
+  rows.push(`<tr title="${TIPS.ptosis}"><td>Ptosis grade</td>${grade("left")}${grade("right")}</tr>`);
   const fit = model.sides.map((x) => `${x.side} breast: every landmark within ${x.largest_error_mm.toFixed(1)} mm ` +
     `(accepted ${model.tolerance_mm} mm)`).join("; ");
   const notes = model.sides.flatMap((x) => x.notes.map((n) => `<li>${x.side}: ${n}</li>`)).join("");
+  const expert = model.sides.map((x) => `${x.side}: cap R = ${(1e3 * x.R_m).toFixed(1)} mm, H = ${(1e3 * x.H_m).toFixed(1)} mm, ` +
+    `moduli x ${x.stiffness_factor.toPrecision(3)} (tissue mu = ${x.tissue_mu_Pa.toPrecision(3)} Pa), ${x.solves} standing solves`).join("; ");
   return `<table id="model-table"><thead><tr><th rowspan="2">cm</th><th colspan="2">left</th><th colspan="2">right</th></tr>` +
     `<tr><th>measured</th><th>model</th><th>measured</th><th>model</th></tr></thead><tbody>${rows.join("")}</tbody></table>` +
-    `<p class="hint" id="model-fit">${fit}</p>` + (notes ? `<ul class="hint">${notes}</ul>` : "");
+    `<p class="hint" id="model-fit">${fit}</p>` + (notes ? `<ul class="hint">${notes}</ul>` : "") + bodyLine(model.body) +
+    `<p class="expert-only expert-note">Model: ${expert}.</p>`;
 }
 
 function capVolumeCm3(x) { // pi H (3 R^2 + H^2) / 6, full breast
@@ -109,18 +143,22 @@ export function planTables(result) {
     const pl = p.plan;
     html += `<h4>${s} breast: Wise (inverted-T) pattern</h4>`;
     if (!pl.ok) { html += `<p class="message bad">No operable plan: ${pl.error}</p>`; continue; }
-    html += `<p id="marking-${s}">Mark standing: new nipple at <b data-key="${s}-new-nipple">${mmcm(pl.surgical.new_nipple_sn_n_mm)}</b> cm ` +
+    const bsa = result.patient_model.body && result.patient_model.body.bsa_m2;
+    const perArea = bsa ? ` (<span title="${TIPS.bsa}">${(pl.surgical.resection_g / bsa).toFixed(0)} g per m² of body surface</span>)` : "";
+    html += `<p id="marking-${s}" title="${TIPS.new_nipple} ${TIPS.limb} ${TIPS.grams}">Mark standing: new nipple at <b data-key="${s}-new-nipple">${mmcm(pl.surgical.new_nipple_sn_n_mm)}</b> cm ` +
       `from the sternal notch; vertical limb <b data-key="${s}-limb">${mmcm(pl.surgical.vertical_limb_mm)}</b> cm; ` +
-      `remove <b data-key="${s}-grams">${pl.surgical.resection_g.toFixed(0)}</b> g.</p>`;
-    const goal = (label, target, value, fmt, tol) => target === undefined ? "" :
-      `<tr><td>${label}</td><td>${fmt(target)}</td><td>${fmt(value)}</td><td class="${Math.abs(value - target) <= tol ? "ideal-ok" : "ideal-off"}">` +
+      `remove <b data-key="${s}-grams">${pl.surgical.resection_g.toFixed(0)}</b> g${perArea}.</p>` +
+      `<p class="expert-only expert-note">Incision: a = ${pl.incision.a_deg.toFixed(1)} deg, s = ${(1e3 * pl.incision.s_m).toFixed(1)} mm, ` +
+      `h = ${(1e3 * pl.incision.h_m).toFixed(1)} mm, d = ${(1e3 * pl.incision.d_m).toFixed(1)} mm (planes P1, P2: docs/CLINIC.md).</p>`;
+    const goal = (label, target, value, fmt, tol, tip) => target === undefined ? "" :
+      `<tr title="${tip}"><td>${label}</td><td>${fmt(target)}</td><td>${fmt(value)}</td><td class="${Math.abs(value - target) <= tol ? "ideal-ok" : "ideal-off"}">` +
       `${Math.abs(value - target) <= tol ? "met" : "not met"}</td></tr>`;
     const t = p.targets, post = pl.post_standing;
     html += `<table id="goals-${s}"><thead><tr><th>goal</th><th>aim</th><th>result</th><th></th></tr></thead><tbody>` +
-      goal("Sternal notch to nipple (cm)", t.sn_n_mm, post.sn_n_mm, mmcm, 5) +
-      goal("Nipple to fold (cm)", t.n_imf_mm, post.n_imf_mm, mmcm, 5) +
-      goal("Tissue removed (g)", t.resection_g, pl.surgical.resection_g, (g) => g.toFixed(0), 0.05 * (t.resection_g || 0)) +
-      goal("Lower pole share (%)", t.lower_pole_share, post.lower_pole_share, (f) => (100 * f).toFixed(0), 0.03) +
+      goal("Sternal notch to nipple (cm)", t.sn_n_mm, post.sn_n_mm, mmcm, 5, TIPS.sn_n) +
+      goal("Nipple to fold (cm)", t.n_imf_mm, post.n_imf_mm, mmcm, 5, TIPS.n_imf) +
+      goal("Tissue removed (g)", t.resection_g, pl.surgical.resection_g, (g) => g.toFixed(0), 0.05 * (t.resection_g || 0), TIPS.grams) +
+      goal("Lower pole share (%)", t.lower_pole_share, post.lower_pole_share, (f) => (100 * f).toFixed(0), 0.03, TIPS.lower_pole) +
       "</tbody></table>";
     for (const line of p.trade_offs || []) html += `<p class="hint">Trade-off: ${line}</p>`;
   }
@@ -128,18 +166,18 @@ export function planTables(result) {
   const before = (s, f) => (model[s] ? f(model[s]) : undefined);
   const after = (s, f) => (plans[s] && plans[s].plan.ok ? f(plans[s].plan, model[s]) : undefined);
   const rows = [
-    ["Sternal notch to nipple (cm)", (x) => x.achieved.sn_n_mm / 10, (p) => p.post_standing.sn_n_mm / 10],
-    ["Nipple to fold (cm)", (x) => x.achieved.n_imf_mm / 10, (p) => p.post_standing.n_imf_mm / 10],
+    ["Sternal notch to nipple (cm)", (x) => x.achieved.sn_n_mm / 10, (p) => p.post_standing.sn_n_mm / 10, TIPS.sn_n],
+    ["Nipple to fold (cm)", (x) => x.achieved.n_imf_mm / 10, (p) => p.post_standing.n_imf_mm / 10, TIPS.n_imf],
     ["Nipple below the notch (cm)", (x) => 100 * (x.notch_m[2] - x.nipple_standing_m[2]),
-     (p, x) => 100 * (x.notch_m[2] - p.post_standing.nipple_m[2])],
-    ["Breast volume (cm³)", (x) => capVolumeCm3(x), (p) => p.volume_post_cm3],
+     (p, x) => 100 * (x.notch_m[2] - p.post_standing.nipple_m[2]), TIPS.nipple_height],
+    ["Breast volume (cm³)", (x) => capVolumeCm3(x), (p) => p.volume_post_cm3, TIPS.volume],
   ];
   const num = (v) => (v === undefined ? "–" : v.toFixed(1));
   html += `<h4>Symmetry</h4><table id="symmetry"><thead><tr><th></th><th>left before</th><th>right before</th>` +
     `<th>left after</th><th>right after</th><th>difference after</th></tr></thead><tbody>` +
-    rows.map(([label, b, a]) => {
+    rows.map(([label, b, a, tip]) => {
       const la = after("left", a), ra = after("right", a);
-      return `<tr><td>${label}</td><td>${num(before("left", b))}</td><td>${num(before("right", b))}</td>` +
+      return `<tr title="${tip}"><td>${label}</td><td>${num(before("left", b))}</td><td>${num(before("right", b))}</td>` +
         `<td>${num(la)}</td><td>${num(ra)}</td><td>${la === undefined || ra === undefined ? "–" : num(Math.abs(la - ra))}</td></tr>`;
     }).join("") + "</tbody></table>";
   return html;

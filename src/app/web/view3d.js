@@ -43,15 +43,37 @@ export class View3D {
     this.render();
   }
 
+  // With `split` (two groups of the content), each group in its own half of
+  // the canvas, seen by the one camera: linked views.
   render() {
-    this.renderer.render(this.scene, this.camera);
+    const size = this.renderer.getSize(new THREE.Vector2());
+    if (!this.split) {
+      this.camera.aspect = size.x / size.y;
+      this.camera.updateProjectionMatrix();
+      this.renderer.render(this.scene, this.camera);
+      return;
+    }
+    const half = Math.floor(size.x / 2);
+    this.camera.aspect = half / size.y;
+    this.camera.updateProjectionMatrix();
+    this.renderer.setScissorTest(true);
+    this.split.forEach((group, k) => {
+      this.split.forEach((g) => { g.visible = g === group; });
+      this.renderer.setViewport(k * half, 0, half - 1, size.y);
+      this.renderer.setScissor(k * half, 0, half - 1, size.y);
+      this.renderer.render(this.scene, this.camera);
+    });
+    for (const g of this.split) g.visible = true;
+    this.renderer.setScissorTest(false);
+    this.renderer.setViewport(0, 0, size.x, size.y);
   }
 
   clear() {
     this.plan = null;
+    this.split = null;
     for (const o of [...this.content.children]) {
       this.content.remove(o);
-      o.traverse((c) => { if (c.geometry) c.geometry.dispose(); if (c.material) c.material.dispose(); });
+      o.traverse((c) => { if (c.geometry) c.geometry.dispose(); if (c.material) { if (c.material.map) c.material.map.dispose(); c.material.dispose(); } });
     }
   }
 
@@ -76,8 +98,8 @@ export class View3D {
   // (frame()): a PNG, base64 without the data: prefix. The view is left as it was.
   snapshot(w, h, direction, margin = 0.4) {
     const camera = this.camera.clone(), target = this.controls.target.clone();
-    if (direction) this.frame(new THREE.Vector3(...direction), margin);
     this.renderer.setSize(w, h, false);
+    if (direction) this.frame(new THREE.Vector3(...direction), margin);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     this.render();
@@ -95,12 +117,25 @@ export class View3D {
   }
 
   // Aim the camera at the content from `direction` at a distance that shows
-  // all of it: `margin` x the content's diagonal fills half the field of view
-  // (0.4 for pictures, 0.6 with room to turn it on the page).
+  // all of it: `margin` x the content's diagonal fills half the field of
+  // view (0.4 for pictures, 0.6 with room to turn it on the page); in a view
+  // narrower than high, at least far enough for its width to fit across.
   frame(direction, margin = 0.6) {
     const box = new THREE.Box3().setFromObject(this.content);
     const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
-    const distance = (margin * size) / Math.tan((this.camera.fov * Math.PI) / 360);
+    const tanHalf = Math.tan((this.camera.fov * Math.PI) / 360);
+    let distance = (margin * size) / tanHalf;
+    const canvas = this.renderer.getSize(new THREE.Vector2());
+    const aspect = (this.split ? canvas.x / 2 : canvas.x) / canvas.y;
+    if (aspect < 1) { // a view narrower than high: the content's width across the view must fit too
+      const right = new THREE.Vector3().crossVectors(new THREE.Vector3(0, 1, 0), direction.clone().normalize());
+      if (right.lengthSq() < 1e-6) right.set(1, 0, 0);
+      right.normalize();
+      let half = 0;
+      for (const x of [box.min.x, box.max.x]) for (const y of [box.min.y, box.max.y]) for (const z of [box.min.z, box.max.z])
+        half = Math.max(half, Math.abs(new THREE.Vector3(x, y, z).sub(centre).dot(right)));
+      distance = Math.max(distance, (1.15 * half) / (tanHalf * aspect));
+    }
     this.controls.target.copy(centre);
     this.camera.position.copy(centre).addScaledVector(direction.clone().normalize(), distance);
     this.camera.lookAt(centre);
@@ -122,28 +157,32 @@ export class View3D {
 
   // Both breasts on the chest, in the patient's frame (mm; the sternal notch
   // at the origin, the patient's left to +x, up +y, forward +z): each of
-  // `breasts` ({side, notch, pre, post}: the notch in that breast's frame,
-  // its standing surfaces) placed by its notch, the right one mirrored.
-  // `mode`: "before", "after", "both" (before on the left, after on the
-  // right of the picture, 360 mm apart) or "overlay" (before translucent). The chest is a translucent plane;
-  // the notch and the nipples are marked.
-  showTorso(breasts, mode) {
+  // `breasts` ({side, notch, pre, post, nipples, drawing}: the notch in that
+  // breast's frame, its standing surfaces, the plan's drawing) placed by its
+  // notch, the right one mirrored. `mode`: "before", "after", "both" (before
+  // and after in two linked views, one camera) or "overlay" (before
+  // translucent). The chest is a translucent plane; the notch and the
+  // nipples are marked; with `tapes`, SN-N and N-IMF are drawn and labelled
+  // on each stage and the skin marking on the breast before surgery.
+  showTorso(breasts, mode, tapes = true) {
     this.clear();
-    const stages = mode === "both" ? [["pre", -180], ["post", 180]]
-      : mode === "overlay" ? [["pre", 0], ["post", 0]] : [[mode === "after" ? "post" : "pre", 0]];
-    for (const [stage, shift] of stages) {
+    const stages = mode === "both" || mode === "overlay" ? ["pre", "post"] : [mode === "after" ? "post" : "pre"];
+    const groups = stages.map((stage) => {
+      const group = new THREE.Group();
       for (const b of breasts) {
         const doc = b[stage];
         if (!doc) continue;
-        const place = (p) => [(b.side === "left" ? 1 : -1) * (p[0] - b.notch[0]) * 1e3 + shift, (p[2] - b.notch[2]) * 1e3,
+        const place = (p) => [(b.side === "left" ? 1 : -1) * (p[0] - b.notch[0]) * 1e3, (p[2] - b.notch[2]) * 1e3,
                               p[1] * 1e3];
-        this.content.add(placedMesh(doc, stage === "pre" ? SKIN : POST, place, mode === "overlay" && stage === "pre" ? 0.45 : 1));
-        if (b.nipples && b.nipples[stage]) this.content.add(marker(place(b.nipples[stage]), 0x3b3040));
+        group.add(placedMesh(doc, stage === "pre" ? SKIN : POST, place, mode === "overlay" && stage === "pre" ? 0.45 : 1));
+        if (b.nipples && b.nipples[stage]) group.add(marker(place(b.nipples[stage]), 0x3b3040));
+        if (tapes && mode !== "overlay" && b.drawing) group.add(drawingFor(b, stage, place));
       }
-      if (stage === "post" && mode === "overlay") continue; // one notch and chest for the overlay
-      this.content.add(marker([shift, 0, 0], 0x2471a3)); // the sternal notch
-      this.content.add(chestPlane(shift));
-    }
+      if (stage === "pre" || mode !== "overlay") group.add(marker([0, 0, 0], 0x2471a3), chestPlane(0)); // notch, chest
+      this.content.add(group);
+      return group;
+    });
+    this.split = mode === "both" ? groups : null;
     if (this.framed !== "torso") this.frame(new THREE.Vector3(0, 0.1, 1), 0.7);
     this.framed = "torso";
     this.render();
@@ -304,6 +343,51 @@ function marker(p, colour) {
   const m = new THREE.Mesh(new THREE.SphereGeometry(4, 12, 8), new THREE.MeshBasicMaterial({ color: colour }));
   m.position.set(...p);
   return m;
+}
+
+const TAPE = 0x1a5276, MARKER_PEN = 0x6c3483;
+
+// The drawing of one breast at one stage: its tapes (SN-N from the notch, N-IMF
+// down the meridian) labelled in cm, and before surgery the Wise marking.
+function drawingFor(b, stage, place) {
+  const group = new THREE.Group(), d = b.drawing[stage === "pre" ? "before" : "after"];
+  // SN-N's label on its tape, 40 % of the way from the notch; N-IMF's under the fold.
+  const sn = d.sn_n.map(place), fold = d.n_imf.map(place);
+  group.add(tube(sn, TAPE, 0.9), tube(fold, TAPE, 0.9));
+  const at = sn[0].map((v, k) => v + 0.4 * (sn[sn.length - 1][k] - v));
+  group.add(label3d(`SN-N ${(d.sn_n_mm / 10).toFixed(1)} cm`, [at[0], at[1], at[2] + 25]));
+  const end = fold[fold.length - 1];
+  group.add(label3d(`N-IMF ${(d.n_imf_mm / 10).toFixed(1)} cm`, [end[0], end[1] - 16, end[2] + 25]));
+  if (stage === "pre")
+    for (const line of b.drawing.marking) group.add(tube(line.map(place), MARKER_PEN, 0.7));
+  return group;
+}
+
+// A line on the skin as a thin tube (visible from every side, no z-fighting).
+function tube(points, colour, radius) {
+  const curve = new THREE.CatmullRomCurve3(points.map((p) => new THREE.Vector3(...p)));
+  return new THREE.Mesh(new THREE.TubeGeometry(curve, Math.max(8, 2 * points.length), radius, 6, false),
+                        new THREE.MeshBasicMaterial({ color: colour }));
+}
+
+// A text label facing the camera, 80 x 15 mm, drawn over everything.
+function label3d(text, position) {
+  const canvas = document.createElement("canvas");
+  canvas.width = 320;
+  canvas.height = 60;
+  const g = canvas.getContext("2d");
+  g.fillStyle = "rgba(255, 255, 255, 0.8)";
+  g.fillRect(0, 0, 320, 60);
+  g.fillStyle = "#1a5276";
+  g.font = "bold 38px system-ui, sans-serif";
+  g.textAlign = "center";
+  g.textBaseline = "middle";
+  g.fillText(text, 160, 31);
+  const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: new THREE.CanvasTexture(canvas), depthTest: false }));
+  sprite.scale.set(80, 15, 1);
+  sprite.position.set(...position);
+  sprite.renderOrder = 10;
+  return sprite;
 }
 
 // The chest wall: a translucent plane z = 0 from the notch down, centred at x = `shift`.
