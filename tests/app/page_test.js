@@ -364,6 +364,20 @@ async function walk(page, errors) {
   await page.waitForSelector("#result-table", { timeout: 30000 });
   check(await page.inputValue("#case-geometry-mesh_size") === "12", "a reload shows the finished job with its case");
 
+  // The expert steps' tables and controls fit the panel from 1024 to 1920 px.
+  for (const width of [1024, 1920]) {
+    await page.setViewportSize({ width, height: 800 });
+    await page.waitForTimeout(300);
+    const over = await page.evaluate(() => {
+      const panel = document.querySelector("#panels").getBoundingClientRect();
+      return [...document.querySelectorAll("#panels table, #panels button, #panels input, #panels select")]
+        .filter((e) => e.offsetParent !== null && e.getBoundingClientRect().right > panel.right + 1)
+        .map((e) => e.id || e.tagName);
+    });
+    check(over.length === 0, `at ${width} px nothing of the steps is cut off (${over.join(", ") || "all fit"})`);
+  }
+  await page.setViewportSize({ width: 1280, height: 800 });
+
   // Export the case file.
   const [download] = await Promise.all([page.waitForEvent("download"), page.click("#export-case")]);
   const toml = fs.readFileSync(await download.path(), "utf8");

@@ -7,7 +7,7 @@ import { View3D, POINT_COLOURS } from "/view3d.js";
 import { reportPictures, usesFit } from "/report.js";
 import { SWEEP_KEYS, sweepPictures, sweepRequest, sweepTable } from "/sweep.js";
 import { evaluationStage, misfitCaption, misfitPlotSvg } from "/misfit_plot.js";
-import { buildConsultForms, fillPatient, goalTargets, patientDocument, patientTable, planTables } from "/consult.js";
+import { TIPS, buildConsultForms, fillPatient, goalTargets, patientDocument, patientTable, planTables } from "/consult.js";
 import { RECORDING_FORMAT, SCAN_LIMITS, recordingText, scanSummaryHtml, scanUploadPath, uploadScan } from "/patient_files.js";
 
 const $ = (s) => document.querySelector(s);
@@ -601,17 +601,21 @@ async function showResult(job) {
   let html = `<p>Resected: <b data-key="resected_volume_cm3">${f1(s.resected_volume_cm3)}</b> cm³, ` +
     `<b data-key="resected_weight_g">${f1(s.resected_weight_g)}</b> g (ρ = ${s.tissue_rho_kg_m3} kg/m³); ` +
     `${gaps}.</p><table id="result-table"><thead><tr><th>posture</th>` +
-    "<th>nipple y,z pre</th><th>nipple y,z post</th><th>nipple→base pre</th><th>nipple→base post</th>" +
-    "<th>lowest z pre</th><th>lowest z post</th><th>lower pole pre</th><th>lower pole post</th></tr></thead><tbody>";
+    `<th title="The nipple's height y out of the chest and z along it, before → after [mm]">nipple y, z</th>` +
+    `<th title="${TIPS.nipple_to_base}">nipple→base</th>` +
+    `<th title="The breast's lowest point z, before → after [mm]">lowest z</th>` +
+    `<th title="${TIPS.lower_pole}">lower pole</th></tr></thead><tbody>`;
   for (const p of s.postures) {
     const a = p.pre, b = p.post;
-    html += `<tr data-posture="${p.posture}"><td>${p.posture}</td><td>${f1(a.nipple_mm[1])}, ${f1(a.nipple_mm[2])}</td>` +
-      `<td>${f1(b.nipple_mm[1])}, ${f1(b.nipple_mm[2])}</td><td>${f1(a.nipple_to_base_mm)}</td>` +
-      `<td class="${off(b.nipple_to_base_mm, s.ideal.nipple_to_base_mm, 5)}" data-key="post_nipple_to_base_mm">${f1(b.nipple_to_base_mm)}</td>` +
-      `<td>${f1(a.z_min_mm)}</td><td>${f1(b.z_min_mm)}</td><td>${share(a.lower_pole_share)}</td>` +
-      `<td class="${off(b.lower_pole_share, s.ideal.lower_pole_share, 0.05)}">${share(b.lower_pole_share)}</td></tr>`;
+    html += `<tr data-posture="${p.posture}"><td>${p.posture}</td>` +
+      `<td>${f1(a.nipple_mm[1])}, ${f1(a.nipple_mm[2])} → ${f1(b.nipple_mm[1])}, ${f1(b.nipple_mm[2])}</td>` +
+      `<td>${f1(a.nipple_to_base_mm)} → <span class="${off(b.nipple_to_base_mm, s.ideal.nipple_to_base_mm, 5)}" ` +
+      `data-key="post_nipple_to_base_mm">${f1(b.nipple_to_base_mm)}</span></td>` +
+      `<td>${f1(a.z_min_mm)} → ${f1(b.z_min_mm)}</td>` +
+      `<td>${share(a.lower_pole_share)} → <span class="${off(b.lower_pole_share, s.ideal.lower_pole_share, 0.05)}">` +
+      `${share(b.lower_pole_share)}</span></td></tr>`;
   }
-  html += `</tbody></table><p class="hint">Ideals: nipple to base ≈ ${s.ideal.nipple_to_base_mm} mm (standing), ` +
+  html += `</tbody></table><p class="hint">Before → after. Ideals: nipple to base ≈ ${s.ideal.nipple_to_base_mm} mm (standing), ` +
     `lower pole ≈ ${(100 * s.ideal.lower_pole_share).toFixed(0)} % of the volume in front of the chest wall (below the nipple).</p>`;
   $("#result").innerHTML = html;
   $("#view-posture").innerHTML = s.postures.map((p) => `<option>${p.posture}</option>`).join("");
@@ -643,7 +647,7 @@ async function showSurfaces() {
     "torso-before": "standing, before surgery, from the sternal notch (blue dot)",
     "torso-after": "standing, after surgery, from the sternal notch (blue dot)",
     "torso-overlay": "standing, before (translucent) and after (blue) overlaid" }[mode];
-  $("#torso-presets").hidden = !mode.startsWith("torso");
+  $("#torso-presets").hidden = $("#tapes-label").hidden = !mode.startsWith("torso");
   // The posture of a finished surgery or scan; the torso is standing.
   $("#view-posture").parentElement.hidden = mode.startsWith("torso") || $("#view-posture").options.length === 0;
   if (mode.startsWith("torso")) return showTorso(mode.slice(6));
@@ -730,6 +734,7 @@ async function main() {
   buildMeasurementForm();
   buildSliders();
   buildConsultForms(document);
+  for (const e of document.querySelectorAll("[data-tip]")) e.title = TIPS[e.dataset.tip];
   $("#patient-file").addEventListener("change", loadPatientFile);
   $("#model-run").addEventListener("click", modelPatient);
   $("#model-cancel").addEventListener("click", () => cancel("patient"));

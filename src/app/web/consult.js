@@ -23,11 +23,13 @@ export const TIPS = {
   nipple_midline: "Nipple to midline: the nipple's sideways distance from the middle of the chest (the notch's line).",
   projection: "Projection: how far the breast stands out in front of the chest wall.",
   ptosis: "Ptosis grade (Regnault) from the nipple's height against the fold: 0 more than 1 cm above it, 1 within 1 cm of it, 2 1-3 cm below, 3 more than 3 cm below.",
+  volume_removed: "Tissue removed from this breast, in cm³ of its unloaded shape.",
   grams: "Tissue removed from this breast, in grams: the removed volume times the tissue's density (0.97 g/cm³ unless the case says otherwise).",
   lower_pole: "Lower pole share: the share of the breast's volume (in front of the chest) that lies below the nipple's height, standing; about 55 % looks natural.",
   new_nipple: "New nipple position, marked standing before surgery: the tape from the sternal notch to where the nipple will sit.",
   limb: "Vertical limb: the length of each vertical line of the marking, from the new nipple down, standing before surgery.",
   volume: "Breast volume: the breast's volume in front of the chest wall in its unloaded shape (as if weightless), in cm³; 1 cm³ of breast tissue weighs about 0.97 g.",
+  nipple_to_base: "Nipple to base: the nipple's distance in front of the chest wall (the breast's base plane), in mm, before → after; green when within 5 mm of the ideal named below the table.",
   nipple_height: "Nipple below the notch: the nipple's height below the sternal notch, standing.",
   bsa: "Body surface area from height and weight (Mosteller: the square root of height [cm] x weight [kg] / 3600); resections are weighed in grams per m² of it.",
 };
