@@ -111,9 +111,10 @@ const std::vector<std::string>& moduli()
 class SideFit
 {
 public:
-  SideFit(const Config& base, const SideLandmarks& t, MPI_Comm comm)
+  /// `stiffness`: also fit the laxity k (needs the target's ptosis grade).
+  SideFit(const Config& base, const SideLandmarks& t, MPI_Comm comm, bool stiffness)
       : _base(base), _target(t), _comm(comm), _forward({named_posture("standing")}, comm),
-        _stiffness(t.ptosis_grade.has_value())
+        _stiffness(stiffness && t.ptosis_grade.has_value())
   {
   }
 
@@ -397,10 +398,23 @@ SideModel fit_side(const Config& base, const std::string& side, const SideLandma
   // final shape afresh, and a soft breast's landmarks differ by millimetres
   // between two meshes of one size. So the fit is judged, and polished, on a
   // mesh generated at its final shape: the mesh every later job solves.
-  auto fit = std::make_unique<SideFit>(base, target, comm);
+  // The laxity k is fitted only when the case's moduli do not give the entered grade.
+  bool lax = false;
+  auto fit = std::make_unique<SideFit>(base, target, comm, lax);
   std::vector<double> y = fit->initial();
   auto [m, r] = fit->evaluate(y);
   int it = lm_fit(*fit, y, m, r, done, side), solves = 0;
+  if (target.ptosis_grade && m.ptosis_grade != *target.ptosis_grade)
+  {
+    log::info("patient {}: grade {} with the case's moduli, {} entered: fitting the laxity", side, m.ptosis_grade,
+              *target.ptosis_grade);
+    solves += fit->solves();
+    lax = true;
+    fit = std::make_unique<SideFit>(base, target, comm, lax);
+    y.push_back(0.0);
+    std::tie(m, r) = fit->evaluate(y);
+    it += lm_fit(*fit, y, m, r, done, side);
+  }
   const double morph_miss = std::max(std::abs(r[0]), std::abs(r[1]));
   // Of the fresh meshes, the one whose landmarks come closest.
   struct Fresh
@@ -414,10 +428,13 @@ SideModel fit_side(const Config& base, const std::string& side, const SideLandma
   for (int round = 0; round < rounds; ++round)
   {
     solves += fit->solves();
-    fit = std::make_unique<SideFit>(base, target, comm);
+    fit = std::make_unique<SideFit>(base, target, comm, lax);
     std::tie(m, r) = fit->evaluate(y);
-    if (largest(r) < best.miss)
-      best = {y, m, fit->surface(), largest(r)};
+    // As check_reached judges: width and N-IMF, and the grade itself (not its centre).
+    const double miss = std::max(std::abs(r[0]), std::abs(r[1])) +
+                        (target.ptosis_grade && m.ptosis_grade != *target.ptosis_grade ? 1.0 : 0.0);
+    if (miss < best.miss)
+      best = {y, m, fit->surface(), miss};
     if (done(r) || round == rounds - 1)
       break;
     log::info("patient {}: the mesh generated at the fitted shape misses by {:.2f} mm; fitting on it", side,

@@ -49,9 +49,10 @@ struct SideModel
   std::vector<std::string> notes; ///< e.g. the entered and the simulated ptosis grade differ
 };
 
-/// Collective. Fit one breast (Levenberg-Marquardt on R, H [, log k];
-/// derivatives in R and H by forward differences on the morphed mesh, in k
-/// from the tangent of the converged solve). Stops when width and N-IMF are
+/// Collective. Fit one breast (Levenberg-Marquardt on R, H, and log k when
+/// the case's moduli do not give the entered ptosis grade; derivatives in R
+/// and H by forward differences on the morphed mesh, in k from the tangent
+/// of the converged solve). Stops when width and N-IMF are
 /// within `tolerance` / 4 (and the nipple within 2 mm of its grade's
 /// centre) or after 20 iterations. The fit moves one mesh (a morph); it is
 /// then judged, and polished in up to 3 more rounds, on a mesh generated at
