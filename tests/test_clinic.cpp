@@ -144,6 +144,31 @@ TEST(Landmarks, ReadsLengthsInTheFilesUnit)
   EXPECT_FALSE(p.sides.at("right").projection.has_value());
 }
 
+TEST(Landmarks, BodySurfaceAreaIsMostellers)
+{
+  // 165 cm, 68 kg: sqrt(165 x 68 / 3600) = 1.76540 m^2; the height in the file's unit (mm here).
+  auto j = patient_doc();
+  j["right"]["sn_n"] = 25.5;
+  j["units"] = "mm";
+  for (const char* side : {"left", "right"})
+    for (auto& [k, v] : j[side].items())
+      if (k != "ptosis_grade")
+        v = 10 * v.get<double>();
+  j["body"] = {{"height", 1650}, {"weight_kg", 68}, {"bra_size", "36DD"}};
+  const Patient p = patient_from_json(j, "p.json");
+  ASSERT_TRUE(p.body.has_value());
+  EXPECT_DOUBLE_EQ(*p.body->height, 1.65);
+  EXPECT_NEAR(*p.body->surface_area(), std::sqrt(165.0 * 68 / 3600), 1e-12);
+  EXPECT_EQ(to_json(*p.body).at("bra_size"), "36DD");
+  j["body"] = {{"weight_kg", 68}};
+  EXPECT_FALSE(patient_from_json(j, "p.json").body->surface_area().has_value()); // needs both
+  j["body"] = {{"height", 2650}};
+  EXPECT_NE(refusal(j).find("'body.height' = 2650 mm is out of range: [1200, 2200] mm"), std::string::npos)
+      << refusal(j);
+  j["body"] = {{"weight", 68}};
+  EXPECT_NE(refusal(j).find("did you mean 'weight_kg'"), std::string::npos) << refusal(j);
+}
+
 TEST(Landmarks, RefusesWithKeyValueAndRange)
 {
   // A nipple 240 cm from the notch: the key, the value, the range and why.

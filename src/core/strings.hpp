@@ -31,9 +31,14 @@ inline std::string shorten(const std::string& text, std::size_t max = 80)
 
 /// The candidate closest to `word` by edit distance (insertions, deletions,
 /// substitutions), if it is close enough to be a likely misspelling: at most
-/// a third of the word's length, and at least 1.
+/// a third of the word's length, and at least 1. A candidate that is the word
+/// with a suffix after '_' comes first (weight -> weight_kg: the key named
+/// without its unit).
 inline std::string closest_match(const std::string& word, const std::vector<std::string>& candidates)
 {
+  for (const auto& c : candidates)
+    if (!word.empty() && c.size() > word.size() + 1 && c.compare(0, word.size(), word) == 0 && c[word.size()] == '_')
+      return c;
   auto distance = [](const std::string& a, const std::string& b)
   {
     std::vector<std::size_t> row(b.size() + 1);
