@@ -208,14 +208,18 @@ TEST(PatientFit, ReproducesTheLandmarksOfBothBreasts)
 {
   // An asymmetric patient: the right breast wider, the left ptotic (grade 2,
   // which scales the moduli down to about 5 %). The landmarks are judged on
-  // a mesh generated at the fitted shape (the surgery's): within 1 mm on the
-  // right; the soft left breast's differ by up to 2.5 mm between two 12 mm
-  // meshes of nearby shapes, so within 2 mm there.
+  // a mesh generated at the fitted shape (the surgery's): the right within
+  // 1 mm on a 12 mm mesh; the soft left breast's landmarks differ by up to
+  // 3 mm between two 12 mm meshes of nearby shapes, so it is fitted on the
+  // default 8 mm mesh, within 1.5 mm.
   SideLandmarks left{0.26, 0.10, 0.14, 0.105, std::nullopt, 2};
   SideLandmarks right{0.245, 0.09, 0.135, 0.10, 0.065, std::nullopt};
-  for (const auto& [side, t, tol] : {std::tuple{"left", left, 2e-3}, std::tuple{"right", right, 1e-3}})
+  Config fine = coarse_case();
+  fine.set("geometry.mesh_size", 0.008);
+  for (const auto& [side, t, c, tol] :
+       {std::tuple{"left", left, fine, 1.5e-3}, std::tuple{"right", right, coarse_case(), 1e-3}})
   {
-    const SideModel m = fit_side(coarse_case(), side, t, tol, MPI_COMM_WORLD);
+    const SideModel m = fit_side(c, side, t, tol, MPI_COMM_WORLD);
     const auto& a = m.achieved.landmarks;
     EXPECT_NEAR(a.sn_n, t.sn_n, tol) << side;
     EXPECT_NEAR(a.n_imf, t.n_imf, tol) << side;

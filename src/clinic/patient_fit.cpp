@@ -251,12 +251,15 @@ std::vector<double> lm_step(const std::vector<std::vector<double>>& J, const std
 
 namespace
 {
-/// J = dr/dy at y: R and H move the mesh (forward differences on the
-/// morph, backward at an upper bound), k does not (the tangent).
+/// J = dr/dy at y: k from the tangent at y's equilibrium (the last solve,
+/// so taken first: no solve), then R and H, which move the mesh (forward
+/// differences on the morph, backward at an upper bound).
 std::vector<std::vector<double>> jacobian(SideFit& fit, const std::vector<double>& y, const std::vector<double>& r,
                                           const StandingMeasures& m)
 {
-  std::vector<std::vector<double>> J;
+  std::vector<std::vector<double>> J(2);
+  if (fit.fits_stiffness())
+    J.push_back(fit.stiffness_column(y, m));
   for (int k = 0; k < 2; ++k)
   {
     std::vector<double> yk = y;
@@ -264,15 +267,9 @@ std::vector<std::vector<double>> jacobian(SideFit& fit, const std::vector<double
     const double h = fit.clamp(yk)[k] == yk[k] ? 5e-4 : -5e-4;
     yk[k] = y[k] + h;
     const auto rk = fit.evaluate(yk).second;
-    std::vector<double> col(r.size());
+    J[k].resize(r.size());
     for (std::size_t i = 0; i < r.size(); ++i)
-      col[i] = (rk[i] - r[i]) / h;
-    J.push_back(col);
-  }
-  if (fit.fits_stiffness())
-  {
-    fit.evaluate(y); // the equilibrium at y, where the tangent is taken
-    J.push_back(fit.stiffness_column(y, m));
+      J[k][i] = (rk[i] - r[i]) / h;
   }
   return J;
 }
