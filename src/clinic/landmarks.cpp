@@ -37,6 +37,19 @@ struct Reader
     throw InputError(fmt::format("patient '{}': key '{}' {}", source, key, what));
   }
 
+  /// Refuse a key of object `j` that is not in `keys`, named `prefix` + key,
+  /// with the closest allowed key and the list `allowed`.
+  void only_keys(const nlohmann::json& j, const std::string& prefix, const std::vector<std::string>& keys,
+                 const std::string& refusal, const std::string& allowed) const
+  {
+    for (const auto& [k, _] : j.items())
+      if (std::find(keys.begin(), keys.end(), k) == keys.end())
+      {
+        const std::string guess = closest_match(k, keys);
+        fail(prefix + k, refusal + (guess.empty() ? "" : " (did you mean '" + guess + "'?)") + "; allowed: " + allowed);
+      }
+  }
+
   double length(const nlohmann::json& side, const std::string& name, const std::string& key) const
   {
     const auto& v = side.at(name);
@@ -54,13 +67,8 @@ struct Reader
   {
     if (!j.is_object())
       fail(name, "must be an object of landmarks");
-    for (const auto& [k, _] : j.items())
-      if (std::find(side_keys.begin(), side_keys.end(), k) == side_keys.end())
-      {
-        const std::string guess = closest_match(k, side_keys);
-        fail(name + "." + k, "is not a landmark" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)")
-                                 + "; allowed: sn_n, n_imf, base_width, nipple_midline, projection, ptosis_grade");
-      }
+    only_keys(j, name + ".", side_keys, "is not a landmark",
+              "sn_n, n_imf, base_width, nipple_midline, projection, ptosis_grade");
     for (const char* k : {"sn_n", "n_imf", "base_width", "nipple_midline"})
       if (!j.contains(k))
         fail(name + "." + k, "is missing (required: sn_n, n_imf, base_width, nipple_midline)");
@@ -93,13 +101,7 @@ struct Reader
     const std::vector<std::string> keys = {"height", "weight_kg", "bra_size"};
     if (!j.is_object())
       fail("body", "must be an object (height, weight_kg, bra_size)");
-    for (const auto& [k, _] : j.items())
-      if (std::find(keys.begin(), keys.end(), k) == keys.end())
-      {
-        const std::string guess = closest_match(k, keys);
-        fail("body." + k, "is not allowed" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)")
-                              + "; allowed: height (in the file's unit), weight_kg, bra_size");
-      }
+    only_keys(j, "body.", keys, "is not allowed", "height (in the file's unit), weight_kg, bra_size");
     Body b;
     auto number = [&](const std::string& k, double scale, double lo, double hi, const std::string& unit)
     {
@@ -151,14 +153,8 @@ Patient patient_from_json(const nlohmann::json& j, const std::string& source)
   Reader rd{source, 0, ""};
   if (!j.is_object())
     rd.fail("(document)", "must be a JSON object");
-  const std::vector<std::string> top = {"format", "id", "units", "left", "right", "body"};
-  for (const auto& [k, _] : j.items())
-    if (std::find(top.begin(), top.end(), k) == top.end())
-    {
-      const std::string guess = closest_match(k, top);
-      rd.fail(k, "is not allowed" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)")
-                     + "; allowed: format, id, units, left, right, body");
-    }
+  rd.only_keys(j, "", {"format", "id", "units", "left", "right", "body"}, "is not allowed",
+               "format, id, units, left, right, body");
   if (j.value("format", "") != "breastsim-patient/1")
     rd.fail("format", "must be \"breastsim-patient/1\"");
   const std::map<std::string, double> units = {{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}};

@@ -40,14 +40,6 @@ double resected_volume(const HalfCapSpec& cap, const meshes::IncisionGeometry& g
 
 namespace
 {
-double length(const std::vector<Point>& p)
-{
-  double L = 0;
-  for (std::size_t k = 1; k < p.size(); ++k)
-    L += std::hypot(p[k][0] - p[k - 1][0], p[k][1] - p[k - 1][1], p[k][2] - p[k - 1][2]);
-  return L;
-}
-
 /// The standing positions of neutral points of the right half (x >= 0); a
 /// point with x < 0 is carried by its mirror image and mirrored back.
 std::vector<Point> standing_positions(const SkinSurface& standing, const std::vector<Point>& neutral)
@@ -137,7 +129,7 @@ SurgicalTerms surgical_terms(const HalfCapSpec& cap, const IncisionSpec& in, con
           [&]
           {
             v[0] = taut_tape(standing, notch, deformed_position(standing, g.A));
-            v[1] = length(standing_positions(standing, limb_curve(cap, in)));
+            v[1] = arc_length(standing_positions(standing, limb_curve(cap, in)), 0);
           });
   MPI_Bcast(v.data(), 2, MPI_DOUBLE, 0, comm);
   t.new_nipple_sn_n = v[0];
