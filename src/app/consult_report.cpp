@@ -45,6 +45,19 @@ std::string targets_text(const json& t)
   return s.empty() ? "none" : s;
 }
 
+/// For a breast measured on its scan: how close the model comes to the scan, in plain words.
+std::string scanned_breast(const json& model)
+{
+  if (!model.contains("scan"))
+    return "";
+  const auto& sc = model.at("scan");
+  return fmt::format("<p class=\"keep\" data-key=\"scan-note\">This breast was measured on its 3D scan. The computer "
+                     "model's surface lies on average {:.1f} cm from the scanned surface, and the model holds {:.0f} "
+                     "cm³ where the scan holds {:.0f} cm³.</p>",
+                     sc.at("model_to_scan_mm").at("mean").get<double>() / 10, sc.at("volume_cm3").at("model").get<double>(),
+                     sc.at("volume_cm3").at("scan").get<double>());
+}
+
 /// The patient's lines for one breast, in plain words.
 std::string patient_breast(const std::string& side, const json& model, const json& plan)
 {
@@ -61,10 +74,10 @@ std::string patient_breast(const std::string& side, const json& model, const jso
       "<tr><td>Nipple, measured from the notch at the base of the neck</td><td>{4}</td><td>{5}</td></tr>"
       "<tr><td>Nipple, its height below the notch</td><td>{6:.1f} cm</td><td>{7:.1f} cm</td></tr>"
       "<tr><td>Nipple to the fold under the breast</td><td>{8}</td><td>{9}</td></tr></table>"
-      "<p class=\"keep\">The nipple is planned to sit <b>{10:.1f} cm higher</b>, standing.</p>",
+      "<p class=\"keep\">The nipple is planned to sit <b>{10:.1f} cm higher</b>, standing.</p>{11}",
       side, p.at("surgical").at("resection_g").get<double>(), cap_volume_cm3(model), p.at("volume_post_cm3").get<double>(),
       cm(before.at("sn_n_mm")), cm(post.at("sn_n_mm")), 100 * (notch_z - z0), 100 * (notch_z - z1),
-      cm(before.at("n_imf_mm")), cm(post.at("n_imf_mm")), 100 * (z1 - z0));
+      cm(before.at("n_imf_mm")), cm(post.at("n_imf_mm")), 100 * (z1 - z0), scanned_breast(model));
 }
 
 /// Both breasts after surgery, side by side, in plain words.
@@ -91,6 +104,23 @@ where the breast was fuller below or to the side.</li>
 <li>Sensation, breastfeeding and the risks of the operation.</li>
 <li>The exact shape: the numbers are a plan for discussion. Your surgeon decides the operation with you.</li></ul>)";
 
+/// The scan's line for the record: file, points, noise, and the model against it.
+std::string record_scan(const json& model)
+{
+  if (!model.contains("scan"))
+    return "";
+  const auto& sc = model.at("scan");
+  const auto& d = sc.at("model_to_scan_mm");
+  return fmt::format("<p>Landmarks measured on the scan {} ({} points, noise {:.2f} mm RMS{}). Model's standing skin to "
+                     "the scan's: mean {:.1f} mm, 95 % within {:.1f} mm, largest {:.1f} mm (placed at the fold); "
+                     "volume {:.0f} cm³ against the scan's {:.0f} cm³ ({:+.0f} %).</p>",
+                     sc.at("file").get<std::string>(), sc.at("points").get<std::size_t>(),
+                     sc.at("noise_rms_mm").get<double>(), sc.at("notch_given").get<bool>() ? ", notch on the scan" : "",
+                     d.at("mean").get<double>(), d.at("p95").get<double>(), d.at("max").get<double>(),
+                     sc.at("volume_cm3").at("model").get<double>(), sc.at("volume_cm3").at("scan").get<double>(),
+                     100 * sc.at("volume_error").get<double>());
+}
+
 std::string record_breast(const std::string& side, const json& model, const json& plan)
 {
   const auto& t = model.at("target");
@@ -112,11 +142,12 @@ std::string record_breast(const std::string& side, const json& model, const json
   return fmt::format(
       "<h3>{0}</h3><table class=\"keep\"><tr><th>landmark [mm]</th><th>measured</th><th>model</th></tr>{1}</table>"
       "<p>Model: cap R = {2:.1f} mm, H = {3:.1f} mm, moduli x {4:.3g} (tissue mu = {5:.4g} Pa); largest landmark "
-      "error {6:.2f} mm. Incision: {7}. Targets: {8}; {9}; {10} surgeries searched.</p>",
+      "error {6:.2f} mm. Incision: {7}. Targets: {8}; {9}; {10} surgeries searched.</p>{11}",
       side, rows, 1e3 * model.at("R_m").get<double>(), 1e3 * model.at("H_m").get<double>(),
       model.at("stiffness_factor").get<double>(), model.at("tissue_mu_Pa").get<double>(),
       model.at("largest_error_mm").get<double>(), incision, targets_text(plan.at("targets")),
-      plan.at("met").get<bool>() ? "all met" : "not met: " + plan.at("unmet").dump(), plan.at("searched").size());
+      plan.at("met").get<bool>() ? "all met" : "not met: " + plan.at("unmet").dump(), plan.at("searched").size(),
+      record_scan(model));
 }
 /// The body's line for the record: height, weight, body surface area and
 /// each breast's resection per m^2 of it, bra size (those given).

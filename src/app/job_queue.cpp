@@ -39,6 +39,12 @@ nlohmann::json outcome_of(const fs::path& folder, int exit_code)
                                     : "the job process ended with exit code " + std::to_string(exit_code) +
                                           " (its output: output.txt in the job folder)"}};
 }
+/// A scan uploaded for the consultation: kept for a patient's model, not modelled (no result/).
+bool kept_scan(const JobRecord& r)
+{
+  return r.kind == "scan" && r.options.at("scan").value("use", "model") == "consultation";
+}
+
 /// The summary of a finished job: a recording's calibration (diagnosis.json)
 /// and a scan job by their own readers, the rest from result/.
 nlohmann::json summary_of(const JobRecord& r, const fs::path& folder)
@@ -46,6 +52,8 @@ nlohmann::json summary_of(const JobRecord& r, const fs::path& folder)
   if (r.kind == "surgery" && r.options.contains("scan")) // the scan's neutral case with the plan, as solved
     return summarize_result(r.kind, Config::from_file(folder / "result" / "case.resolved.toml"), folder / "result");
   const Config c = case_from_overrides(r.overrides);
+  if (kept_scan(r))
+    return {{"kind", "scan"}, {"use", "consultation"}, {"bytes", r.options.at("scan").at("bytes")}};
   if (r.kind == "scan")
     return summarize_scan(c, folder);
   if (r.kind == "calibrate" && fs::exists(folder / "result" / "diagnosis.json"))
@@ -236,8 +244,8 @@ void JobQueue::finish(const std::string& id, int exit_code, bool cancelled)
     result.progress = 1;
     result.stage = "finished";
     result.summary = summary_of(record, folder);
-    result.files = result_files(folder);
-    if (record.kind == "scan")
+    result.files = kept_scan(record) ? std::map<std::string, std::string>{{"log.txt", "log.txt"}} : result_files(folder);
+    if (record.kind == "scan" && !kept_scan(record))
       result.files.merge(scan_files());
     if (fs::exists(folder / progress_file))
       result.files[progress_file] = progress_file;

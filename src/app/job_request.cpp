@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "job_request.hpp"
+#include "patient_scans.hpp"
 #include "case_request.hpp"
 #include "errors.hpp"
 #include "fit_parameters.hpp"
@@ -74,7 +75,7 @@ void check_patient(nlohmann::json& request, bool plan)
   const Config c = case_from_overrides(request["overrides"]);
   if (!request.contains("patient"))
     throw InputError("field 'patient' is missing: the landmarks, a breastsim-patient/1 document");
-  const clinic::Patient p = clinic::patient_from_json(request["patient"], "patient");
+  const clinic::Patient p = clinic::patient_from_json(resolve_patient_scans(request["patient"], {}), "patient");
   if (!request.contains("tolerance_mm"))
     request["tolerance_mm"] = 1.0;
   const auto& tol = request["tolerance_mm"];

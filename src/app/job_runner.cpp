@@ -10,6 +10,7 @@
 #include "plan_job.hpp"
 #include "plan_targets.hpp"
 #include "progress_channel.hpp"
+#include "patient_scans.hpp"
 #include "scan_job.hpp"
 #include "simulate.hpp"
 #include "surgery.hpp"
@@ -102,7 +103,8 @@ void run(const fs::path& folder)
     sweep(c, sweep_grid(request.at("vary"), c), target, MPI_COMM_WORLD, 0, progress);
   else if (kind == "patient" || kind == "plan")
   {
-    const clinic::Patient p = clinic::patient_from_json(request.at("patient"), "patient");
+    const clinic::Patient p =
+        clinic::patient_from_json(resolve_patient_scans(request.at("patient"), folder.parent_path()), "patient");
     const double tol = 1e-3 * request.at("tolerance_mm").get<double>();
     if (kind == "patient")
       clinic::write_patient_model(clinic::fit_patient(c, p, tol, MPI_COMM_WORLD), target, MPI_COMM_WORLD);

@@ -22,6 +22,8 @@ void run_scan_job(const fs::path& folder, const nlohmann::json& request, const O
                   const Progress& progress)
 {
   const auto& scan = request.at("scan");
+  if (scan.value("use", "model") == "consultation") // kept for a patient's model (patient_scans.hpp), checked on upload
+    return progress.report("scan kept for the consultation", 1);
   ScanModelRequest r;
   r.skin = folder / scan.at("file").get<std::string>();
   r.options.units = scan::parse_units(scan.at("units").get<std::string>(), "units");

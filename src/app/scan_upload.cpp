@@ -69,7 +69,7 @@ void reply_scan_job(const httplib::Request& req, httplib::Response& res, JobStor
   const std::string name = "scan." + u.format;
   const auto r = store.create({{"kind", "scan"}, {"overrides", nlohmann::json::object()},
                                {"scan", {{"file", name}, {"format", u.format}, {"units", u.units},
-                                         {"posture", u.posture}, {"mesh_size", u.mesh_size},
+                                         {"posture", u.posture}, {"mesh_size", u.mesh_size}, {"use", u.use},
                                          {"bytes", req.body.size()}}}});
   fs::rename(file, store.folder(r.id) / name);
   if (!submit_or_fail(store, queue, r.id))
@@ -81,9 +81,9 @@ void reply_scan_job(const httplib::Request& req, httplib::Response& res, JobStor
 ScanUpload checked_scan_upload(const std::multimap<std::string, std::string>& params)
 {
   for (const auto& [k, _] : params)
-    if (k != "format" && k != "units" && k != "posture" && k != "mesh_size")
+    if (k != "format" && k != "units" && k != "posture" && k != "mesh_size" && k != "use")
       throw InputError(fmt::format("field '{}' is not allowed in a scan upload (allowed: format, mesh_size, "
-                                   "posture, units)", k.substr(0, 40)));
+                                   "posture, units, use)", k.substr(0, 40)));
   ScanUpload u;
   u.format = one_of(params, "format", {"stl", "ply", "obj"}, "");
   if (params.count("units") != 1)
@@ -92,6 +92,9 @@ ScanUpload checked_scan_upload(const std::multimap<std::string, std::string>& pa
   scan::parse_units(u.units, "units");
   u.posture = one_of(params, "posture", {"standing", "supine", "all_fours"}, "standing");
   u.mesh_size = mesh_size_of(params);
+  u.use = one_of(params, "use", {"model", "consultation"}, "model");
+  if (u.use == "consultation" && u.posture != "standing")
+    throw InputError("posture = " + u.posture + ": a consultation's scan is taken standing");
   return u;
 }
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #pragma once
 // The scan upload: POST /api/scans?format=stl&units=mm&posture=standing
-// [&mesh_size=0.01] with the file's bytes as the body (Content-Type:
+// [&mesh_size=0.01] [&use=model|consultation] with the file's bytes as the body (Content-Type:
 // application/octet-stream, at most --max-upload bytes). The server names
 // the file itself: it is written under <data>/uploads/<random>.<format>,
 // read and checked as `scan-model` reads it (the scan readers and
@@ -23,6 +23,7 @@ struct ScanUpload
   std::string units;    ///< mm, m
   std::string posture;  ///< standing, supine, all_fours
   double mesh_size = 0; ///< 0 (by the breast's volume) or [0.001, 0.02] m
+  std::string use;      ///< model (the scan job: model, neutral state, postures) or consultation (kept for a patient)
 };
 
 /// The query's fields checked with the CLI's messages; InputError naming

@@ -24,7 +24,8 @@ const std::vector<LandmarkRange>& landmark_ranges()
 namespace
 {
 const std::vector<std::string> side_keys = {"sn_n", "n_imf", "base_width", "nipple_midline", "projection",
-                                            "ptosis_grade"};
+                                            "ptosis_grade", "scan"};
+const std::vector<std::string> scan_keys = {"file", "units", "nipple", "notch", "up", "lateral"};
 
 struct Reader
 {
@@ -63,20 +64,42 @@ struct Reader
     return x;
   }
 
-  SideLandmarks side(const nlohmann::json& j, const std::string& name) const
+  std::array<double, 3> vector(const nlohmann::json& j, const std::string& key, double scale) const
+  {
+    const auto& v = j.at(key.substr(key.rfind('.') + 1));
+    if (!v.is_array() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](const auto& x)
+                                                        { return x.is_number() && std::isfinite(x.template get<double>()); }))
+      fail(key, fmt::format("= {} must be three finite numbers [x, y, z] in the scanner's frame", shorten(v.dump())));
+    return {scale * v[0].get<double>(), scale * v[1].get<double>(), scale * v[2].get<double>()};
+  }
+
+  SideScan scan(const nlohmann::json& j, const std::string& name) const
   {
     if (!j.is_object())
-      fail(name, "must be an object of landmarks");
-    only_keys(j, name + ".", side_keys, "is not a landmark",
-              "sn_n, n_imf, base_width, nipple_midline, projection, ptosis_grade");
-    for (const char* k : {"sn_n", "n_imf", "base_width", "nipple_midline"})
-      if (!j.contains(k))
-        fail(name + "." + k, "is missing (required: sn_n, n_imf, base_width, nipple_midline)");
-    SideLandmarks s;
-    s.sn_n = length(j, "sn_n", name + ".sn_n");
-    s.n_imf = length(j, "n_imf", name + ".n_imf");
-    s.base_width = length(j, "base_width", name + ".base_width");
-    s.nipple_midline = length(j, "nipple_midline", name + ".nipple_midline");
+      fail(name, "must be an object: file, units, and optionally nipple, notch, up, lateral");
+    only_keys(j, name + ".", scan_keys, "is not allowed", "file, units, nipple, notch, up, lateral");
+    if (!j.contains("file") || !j.at("file").is_string() || j.at("file").get<std::string>().empty())
+      fail(name + ".file", "must name the scan file (STL, PLY or OBJ; relative to the patient file's folder)");
+    const std::string u = j.contains("units") && j.at("units").is_string() ? j.at("units").get<std::string>() : "";
+    if (u != "mm" && u != "m")
+      fail(name + ".units", "must be mm or m (the unit of the scan's coordinates)");
+    SideScan s;
+    s.file = j.at("file").get<std::string>();
+    s.units = u == "mm" ? scan::Units::mm : scan::Units::m;
+    const double k = u == "mm" ? 1e-3 : 1.0;
+    if (j.contains("nipple"))
+      s.nipple = vector(j, name + ".nipple", k);
+    if (j.contains("notch"))
+      s.notch = vector(j, name + ".notch", k);
+    if (j.contains("up"))
+      s.up = vector(j, name + ".up", 1.0);
+    if (j.contains("lateral"))
+      s.lateral = vector(j, name + ".lateral", 1.0);
+    return s;
+  }
+
+  void optional_landmarks(const nlohmann::json& j, SideLandmarks& s, const std::string& name) const
+  {
     if (j.contains("projection"))
       s.projection = length(j, "projection", name + ".projection");
     if (j.contains("ptosis_grade"))
@@ -88,6 +111,47 @@ struct Reader
                                                  shorten(g.dump())));
       s.ptosis_grade = g.get<int>();
     }
+  }
+
+  /// A side given as a scan: what the scan measures must not be entered too.
+  void scanned_side(const nlohmann::json& j, const std::string& name, const SideScan& sc, SideLandmarks& s) const
+  {
+    for (const char* k : {"n_imf", "base_width", "projection", "ptosis_grade"})
+      if (j.contains(k))
+        fail(name + "." + k, "is measured on the scan: leave it out (or enter the landmarks without the scan)");
+    for (const char* k : {"sn_n", "nipple_midline"})
+      if (sc.notch && j.contains(k))
+        fail(name + "." + k, "is measured on the scan from its notch: leave it out (or the notch)");
+      else if (!sc.notch && !j.contains(k))
+        fail(name + "." + k, "is missing: a scan without a notch needs sn_n and nipple_midline entered");
+    if (!sc.notch)
+    {
+      s.sn_n = length(j, "sn_n", name + ".sn_n");
+      s.nipple_midline = length(j, "nipple_midline", name + ".nipple_midline");
+    }
+  }
+
+  SideLandmarks side(const nlohmann::json& j, const std::string& name, std::optional<SideScan>& sc) const
+  {
+    if (!j.is_object())
+      fail(name, "must be an object of landmarks");
+    only_keys(j, name + ".", side_keys, "is not a landmark",
+              "sn_n, n_imf, base_width, nipple_midline, projection, ptosis_grade, scan");
+    SideLandmarks s;
+    if (j.contains("scan"))
+    {
+      sc = scan(j.at("scan"), name + ".scan");
+      scanned_side(j, name, *sc, s);
+      return s;
+    }
+    for (const char* k : {"sn_n", "n_imf", "base_width", "nipple_midline"})
+      if (!j.contains(k))
+        fail(name + "." + k, "is missing (required: sn_n, n_imf, base_width, nipple_midline; or a scan)");
+    s.sn_n = length(j, "sn_n", name + ".sn_n");
+    s.n_imf = length(j, "n_imf", name + ".n_imf");
+    s.base_width = length(j, "base_width", name + ".base_width");
+    s.nipple_midline = length(j, "nipple_midline", name + ".nipple_midline");
+    optional_landmarks(j, s, name);
     if (s.nipple_midline < s.base_width / 2)
       fail(name + ".nipple_midline",
            fmt::format("= {} {} is less than half the base width ({} {}): the breast's base would cross "
@@ -172,9 +236,14 @@ Patient patient_from_json(const nlohmann::json& j, const std::string& source)
   }
   for (const char* side : {"left", "right"})
     if (j.contains(side))
-      p.sides[side] = rd.side(j.at(side), side);
+    {
+      std::optional<SideScan> sc;
+      p.sides[side] = rd.side(j.at(side), side, sc);
+      if (sc)
+        p.scans[side] = *sc;
+    }
   if (p.sides.empty())
-    rd.fail("left", "is missing: give the landmarks of the left and/or the right breast");
+    rd.fail("left", "is missing: give the landmarks (or a scan) of the left and/or the right breast");
   if (j.contains("body"))
     p.body = rd.body(j.at("body"));
   return p;
@@ -182,7 +251,11 @@ Patient patient_from_json(const nlohmann::json& j, const std::string& source)
 
 Patient read_patient(const std::filesystem::path& file)
 {
-  return patient_from_json(calibration::read_json_file(file, "patient file"), file.string());
+  Patient p = patient_from_json(calibration::read_json_file(file, "patient file"), file.string());
+  for (auto& [_, sc] : p.scans)
+    if (sc.file.is_relative())
+      sc.file = file.parent_path() / sc.file;
+  return p;
 }
 
 nlohmann::json to_json(const SideLandmarks& s)

@@ -5,7 +5,9 @@
 // and nipple to midline, optionally projection and Regnault's ptosis grade
 // (docs/CLINIC.md, "The patient file"). Read once, checked against the
 // accepted ranges with the reason for each.
+#include "scan_surface.hpp"
 #include <filesystem>
+#include <array>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -33,10 +35,22 @@ struct Body
   std::optional<double> surface_area() const;
 };
 
+/// The standing scan of one breast (docs/CLINIC.md, "A scanned breast"):
+/// N-IMF, base width, projection and ptosis grade are measured on it, and
+/// SN-N and the nipple's distance from the midline too when a notch is given.
+struct SideScan
+{
+  std::filesystem::path file;
+  scan::Units units = scan::Units::mm;
+  std::optional<std::array<double, 3>> nipple, notch; ///< landmarks in the scanner frame [m]
+  std::array<double, 3> up{0, 0, 1}, lateral{1, 0, 0}; ///< cranial, and toward this breast's axilla (scanner frame)
+};
+
 struct Patient
 {
   std::string id;                             ///< the patient's ID (as the clinic writes it)
-  std::map<std::string, SideLandmarks> sides; ///< "left" and/or "right"
+  std::map<std::string, SideLandmarks> sides; ///< "left" and/or "right" (a scanned side: the entered part)
+  std::map<std::string, SideScan> scans;      ///< the sides given as a scan
   std::optional<Body> body;
 };
 
@@ -53,6 +67,7 @@ const std::vector<LandmarkRange>& landmark_ranges();
 /// InputError naming the key, the value (in the file's unit) and the
 /// accepted range with its reason.
 Patient patient_from_json(const nlohmann::json& j, const std::string& source);
+/// As patient_from_json; a scan's relative file name is taken from the patient file's folder.
 Patient read_patient(const std::filesystem::path& file);
 nlohmann::json to_json(const SideLandmarks& s); ///< in mm
 nlohmann::json to_json(const Body& b);          ///< height_m, weight_kg, bra_size, bsa_m2 (those given)

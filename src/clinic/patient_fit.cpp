@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "patient_fit.hpp"
+#include "scan_landmarks.hpp"
 #include "errors.hpp"
 #include "forward_model.hpp"
 #include "least_squares.hpp"
@@ -452,12 +453,13 @@ SideModel fit_side(const Config& base, const std::string& side, const SideLandma
   check_reached(out, rr, best.y, tolerance, morph_miss);
   out.largest_error = std::max({std::abs(rr[0]), std::abs(rr[1]), std::abs(out.achieved.landmarks.sn_n - target.sn_n)});
   add_notes(out, tolerance);
+  out.standing = std::move(best.surface);
   return out;
 }
 
 nlohmann::json to_json(const SideModel& m)
 {
-  return {{"side", m.side},
+  nlohmann::json j = {{"side", m.side},
           {"target", to_json(m.target)},
           {"achieved", to_json(m.achieved.landmarks)},
           {"largest_error_mm", 1e3 * m.largest_error},
@@ -471,5 +473,8 @@ nlohmann::json to_json(const SideModel& m)
           {"iterations", m.iterations},
           {"solves", m.solves},
           {"notes", m.notes}};
+  if (m.scan)
+    j["scan"] = to_json(*m.scan);
+  return j;
 }
 } // namespace breastsim::clinic

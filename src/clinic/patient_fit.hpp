@@ -11,6 +11,7 @@
 #include "config.hpp"
 #include "landmarks.hpp"
 #include "skin_measures.hpp"
+#include <memory>
 #include <mpi.h>
 
 namespace breastsim::clinic
@@ -36,6 +37,8 @@ StandingMeasures measure_standing(const SkinSurface& s, const Point& nipple, con
 double place_notch(const SkinSurface& s, const Point& nipple, double nipple_midline, double sn_n,
                    MPI_Comm comm);
 
+struct ScanSide; // scan_landmarks.hpp
+
 struct SideModel
 {
   std::string side;
@@ -47,6 +50,8 @@ struct SideModel
   int iterations = 0, solves = 0;
   double stiffness_factor = 1; ///< k on tissue.mu, tissue.lambda, skin.mu, skin.lambda (1: the case's)
   std::vector<std::string> notes; ///< e.g. the entered and the simulated ptosis grade differ
+  SkinSurface standing;     ///< the fitted breast's standing skin (complete on rank 0)
+  std::shared_ptr<const ScanSide> scan; ///< the side's scan, when it was given as one
 };
 
 /// Collective. Fit one breast (Levenberg-Marquardt on R, H, and log k when

@@ -1,17 +1,58 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "patient_job.hpp"
 #include "log.hpp"
+#include "on_root.hpp"
+#include "scan_landmarks.hpp"
 #include "output.hpp"
 #include <cmath>
 #include <fmt/format.h>
 
 namespace breastsim::clinic
 {
+namespace
+{
+/// Collective. A scanned side: its landmarks measured on the scan, the
+/// model fitted to them, then its standing skin compared with the scan.
+SideModel fit_scanned_side(const Config& base, const std::string& side, const SideLandmarks& entered,
+                           const SideScan& in, double tolerance, MPI_Comm comm)
+{
+  auto sc = std::make_shared<ScanSide>();
+  sc->input = in;
+  sc->skin = read_scanned_skin(in);
+  sc->measured = measure_scan(sc->skin, in.notch);
+  const SideLandmarks target = scan_landmarks(sc->measured, entered, in.file);
+  log::info("patient: fitting the {} breast to the landmarks measured on its scan (N-IMF {:.1f} cm, base width "
+            "{:.1f} cm, grade {})", side, 100 * target.n_imf, 100 * target.base_width, *target.ptosis_grade);
+  SideModel m = fit_side(base, side, target, tolerance, comm);
+  std::array<double, 8> v{};
+  on_root(comm,
+          [&]
+          {
+            const auto c = compare_with_scan(sc->skin, sc->measured.fold, m.standing, m.achieved.fold);
+            v = {c.mean, c.p95, c.max, c.volume_scan, c.volume_model, c.shift[0], c.shift[1], c.shift[2]};
+          });
+  MPI_Bcast(v.data(), static_cast<int>(v.size()), MPI_DOUBLE, 0, comm);
+  sc->comparison = {v[0], v[1], v[2], v[3], v[4], {v[5], v[6], v[7]}};
+  if (sc->measured.notch)
+    sc->notch = *sc->measured.notch;
+  else // on the scan as on the model: the taut tape over the scan has the entered SN-N
+    sc->notch = {sc->skin.nipple[0] - target.nipple_midline, 0.0,
+                 place_notch(sc->skin.skin, sc->skin.nipple, target.nipple_midline, target.sn_n, comm)};
+  m.scan = sc;
+  return m;
+}
+} // namespace
+
 PatientModel fit_patient(const Config& base, const Patient& p, double tolerance, MPI_Comm comm)
 {
   PatientModel m{p.id, {}, tolerance, p.body};
   for (const auto& [side, landmarks] : p.sides)
   {
+    if (const auto sc = p.scans.find(side); sc != p.scans.end())
+    {
+      m.sides.push_back(fit_scanned_side(base, side, landmarks, sc->second, tolerance, comm));
+      continue;
+    }
     log::info("patient: fitting the {} breast to its landmarks", side);
     m.sides.push_back(fit_side(base, side, landmarks, tolerance, comm));
   }
@@ -32,7 +73,7 @@ nlohmann::json to_json(const PatientModel& m)
 
 std::string patient_table(const PatientModel& m)
 {
-  std::string t = fmt::format("patient {}: landmarks standing, entered -> simulated [cm]\n", m.id.empty() ? "-" : m.id);
+  std::string t = fmt::format("patient {}: landmarks standing, entered (or measured on a scan) -> simulated [cm]\n", m.id.empty() ? "-" : m.id);
   t += fmt::format("{:<7} {:>15} {:>15} {:>15} {:>15} {:>15} {:>8}\n", "side", "SN-N", "N-IMF", "base width",
                    "to midline", "projection", "ptosis");
   auto cell = [](double entered, double simulated)
@@ -57,6 +98,15 @@ std::string patient_table(const PatientModel& m)
                      s.target.ptosis_grade ? " (fitted to the ptosis grade)" : " (the case's moduli)", s.iterations, s.solves);
     for (const auto& n : s.notes)
       t += fmt::format("{}: note: {}\n", s.side, n);
+    if (s.scan)
+    {
+      const auto& c = s.scan->comparison;
+      t += fmt::format("{}: landmarks measured on the scan {}; the model's standing skin lies {:.1f} mm (mean; 95 % "
+                       "within {:.1f} mm, at most {:.1f} mm) from the scan's, volume {:.0f} cm^3 against the scan's "
+                       "{:.0f} cm^3 ({:+.0f} %)\n",
+                       s.side, s.scan->input.file.filename().string(), 1e3 * c.mean, 1e3 * c.p95, 1e3 * c.max,
+                       1e6 * c.volume_model, 1e6 * c.volume_scan, 100 * (c.volume_model / c.volume_scan - 1));
+    }
   }
   if (m.body)
   {

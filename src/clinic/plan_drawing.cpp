@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "plan_drawing.hpp"
 #include "half_cap.hpp"
+#include "scan_landmarks.hpp"
 #include <cmath>
 #include <fstream>
 
@@ -26,6 +27,35 @@ nlohmann::json tapes(const SkinSurface& s, const Point& notch, const Point& nipp
   return {{"sn_n", polyline(sn_n)}, {"sn_n_mm", 1e3 * a}, {"n_imf", polyline(n_imf)}, {"n_imf_mm", 1e3 * b}};
 }
 
+/// A scanned side, placed by its notch where the model's is: the scan's
+/// skin, the tapes on it (SN-N from the notch, N-IMF as measured) and the
+/// marking carried onto it along rays from its base centre (onto_scan).
+nlohmann::json scan_drawing(const ScanSide& sc, const Point& notch, const std::vector<std::vector<Point>>& marking)
+{
+  const Point d{sc.notch[0] - notch[0], 0.0, sc.notch[2] - notch[2]}; // model frame + d = scan frame
+  auto to_model = [&d](std::vector<Point> p)
+  {
+    for (auto& q : p)
+      q = {q[0] - d[0], q[1] - d[1], q[2] - d[2]};
+    return p;
+  };
+  std::vector<Point> sn_n;
+  const double a = taut_tape(sc.skin.skin, sc.notch, sc.skin.nipple, 5e-4, &sn_n);
+  nlohmann::json lines = nlohmann::json::array();
+  for (const auto& line : marking)
+  {
+    std::vector<Point> on;
+    for (const auto& p : line)
+      on.push_back(onto_scan(sc.skin, d, p));
+    lines.push_back(polyline(on));
+  }
+  return {{"skin", scan_surface_json(sc.skin, d)},
+          {"before",
+           {{"sn_n", polyline(to_model(sn_n))}, {"sn_n_mm", 1e3 * a},
+            {"n_imf", polyline(to_model(sc.measured.n_imf_path))}, {"n_imf_mm", 1e3 * sc.measured.landmarks.n_imf}}},
+          {"marking", lines}};
+}
+
 SkinSurface read_surface(const std::filesystem::path& file)
 {
   std::ifstream in(file);
@@ -46,9 +76,12 @@ nlohmann::json plan_drawing(const SideModel& m, const PlanOutcome& best, const s
   nlohmann::json lines = nlohmann::json::array();
   for (const auto& line : marking)
     lines.push_back(polyline(line));
-  return {{"before", tapes(pre, m.notch, m.achieved.nipple)},
-          {"after", tapes(post, m.notch, best.nipple)},
-          {"marking", lines},
-          {"new_nipple", polyline({marking.front().front()}).front()}};
+  nlohmann::json j = {{"before", tapes(pre, m.notch, m.achieved.nipple)},
+                      {"after", tapes(post, m.notch, best.nipple)},
+                      {"marking", lines},
+                      {"new_nipple", polyline({marking.front().front()}).front()}};
+  if (m.scan)
+    j["scan"] = scan_drawing(*m.scan, m.notch, marking);
+  return j;
 }
 } // namespace breastsim::clinic

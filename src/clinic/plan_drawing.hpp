@@ -13,7 +13,9 @@ namespace breastsim::clinic
 /// Collective. The drawing of breast `m`'s plan `best`, whose surgery was
 /// written to `surgery_dir` (preop/ and postop/surface_standing.json):
 /// {"before": {"sn_n": [[x, y, z], ...], "sn_n_mm", "n_imf": [...], "n_imf_mm"},
-///  "after": {...}, "marking": [[[x, y, z], ...], ...], "new_nipple": [x, y, z]}
+///  "after": {...}, "marking": [[[x, y, z], ...], ...], "new_nipple": [x, y, z],
+///  and for a scanned side "scan": {"skin": {vertices, triangles, mirror_x},
+///  "before": the tapes on the scan, "marking": the marking carried onto it}}
 /// on rank 0 (null elsewhere, and where the plan was not operated).
 nlohmann::json plan_drawing(const SideModel& m, const PlanOutcome& best, const std::filesystem::path& surgery_dir,
                             MPI_Comm comm);

@@ -113,7 +113,7 @@ double nipple_to_fold(const SkinSurface& s, const Point& nipple, Point* fold, st
 
 double skin_height(const SkinSurface& s, double x, double z)
 {
-  const double px = std::abs(x);
+  const double px = s.half_model ? std::abs(x) : x;
   double top = 0;
   for (const auto& t : s.triangles)
   {
@@ -179,10 +179,6 @@ double base_width(const SkinSurface& s, double chest_tolerance)
   return 2 * x;
 }
 
-namespace
-{
-/// Barycentric coordinates of the point of triangle (a, b, c) closest to p
-/// (Ericson, Real-Time Collision Detection, 5.1.5).
 std::array<double, 3> closest_barycentric(const Point& p, const Point& a, const Point& b, const Point& c)
 {
   auto sub = [](const Point& u, const Point& v) { return Point{u[0] - v[0], u[1] - v[1], u[2] - v[2]}; };
@@ -221,7 +217,6 @@ std::array<double, 3> closest_barycentric(const Point& p, const Point& a, const 
   const double v = vb * denom, w = vc * denom;
   return {1 - v - w, v, w};
 }
-} // namespace
 
 Point deformed_position(const SkinSurface& s, const Point& reference)
 {

@@ -43,8 +43,8 @@ double arc_length(const std::vector<Point>& p, std::size_t from);
 double nipple_to_fold(const SkinSurface& s, const Point& nipple, Point* fold = nullptr,
                       std::vector<Point>* path = nullptr);
 
-/// Outermost skin height y over the chest point (x, z) of the deformed
-/// half-model skin mirrored to x < 0; 0 where the skin does not cover it.
+/// Outermost skin height y over the chest point (x, z) of the deformed skin
+/// (a half model mirrored to x < 0); 0 where the skin does not cover it.
 double skin_height(const SkinSurface& s, double x, double z);
 
 /// A taut tape from the chest point `notch` = (x, 0, z) to the skin point
@@ -56,6 +56,10 @@ double taut_tape(const SkinSurface& s, const Point& notch, const Point& nipple, 
 /// Width of the breast's base: twice the largest |x| of the deformed skin
 /// vertices whose reference lies on the chest [m].
 double base_width(const SkinSurface& s, double chest_tolerance = 2e-4);
+
+/// Barycentric coordinates of the point of triangle (a, b, c) closest to p
+/// (Ericson, Real-Time Collision Detection, 5.1.5).
+std::array<double, 3> closest_barycentric(const Point& p, const Point& a, const Point& b, const Point& c);
 
 /// The deformed position of the reference skin point nearest `reference`:
 /// its closest point on the reference skin, carried by the barycentric

@@ -6,8 +6,10 @@
 // breast -> the plans, met, with the numbers of the CLI's `breastsim plan`
 // -> the symmetry table -> both breasts on the chest, before | after, from
 // each camera preset -> the report for the patient and for the record,
-// printed to PDF. At 1024 and 1920 px nothing of the consultation is
-// cut off; the page as it opens (the surgeon's view) speaks no model
+// printed to PDF. Then a breast entered as its standing scan: measured on
+// the scan with the CLI's numbers, the model's distance from the scan shown,
+// planned, and drawn before surgery as the scan itself with the marking on
+// it. At 1024 and 1920 px nothing of the consultation is cut off; the page as it opens (the surgeon's view) speaks no model
 // jargon, and the expert toggle shows the model's steps and terms.
 // Screenshots into SHOT_DIR.
 // Usage: node consult_test.js URL MEASUREMENTS_JSON SHOT_DIR BREASTSIM   (NODE_PATH: playwright-core)
@@ -173,6 +175,78 @@ async function walk(page, errors, work) {
   await fits(page, 1024);
   await fits(page, 1920);
   check(errors.length === 0, "no console errors" + (errors.length ? ": " + errors : ""));
+  return href;
+}
+
+// The left breast as its standing scan (a synthetic patient's, noisy, with
+// holes); the right one by its landmarks. Measured on the scan, the page's
+// numbers are the CLI's on the same scan; the plan's torso draws the scan.
+async function scanWalk(page, errors, work, firstReport) {
+  const scanDir = path.join(work, "scan");
+  execFileSync(program, ["-q", "synthetic-patient", "--seed", "2", "--volume", "500", "--ptosis", "0.3", "--lateral",
+                         "0.1", "--asymmetry", "0.15", "--posture", "standing", "--noise", "0.0005", "--holes", "2",
+                         "--format", "stl", "--out", scanDir], { stdio: "ignore" });
+  const scanFile = path.join(scanDir, "scan.stl");
+  const doc = JSON.parse(fs.readFileSync(patientFile, "utf8"));
+  doc.left = { scan: { file: scanFile, units: "mm" }, sn_n: doc.left.sn_n, nipple_midline: doc.left.nipple_midline };
+  const docFile = path.join(work, "scan_patient.json");
+  fs.writeFileSync(docFile, JSON.stringify(doc));
+  await page.goto(url);
+  await page.waitForFunction(() => window.breastsimApp && window.breastsimApp.ready, null, { timeout: 30000 });
+  await page.click("#expert");
+  await page.fill("#case-geometry-mesh_size", "12");
+  await page.click("#expert");
+  await page.fill("#model-tolerance", "4");
+  await page.setInputFiles("#patient-file", patientFile);
+  await page.waitForFunction(() => /loaded/.test(document.querySelector("#model-message").textContent));
+  await page.setInputFiles("#lm-left-scan", scanFile);
+  await page.waitForFunction(() => /measured on it/.test(document.querySelector("#lm-left-scan-status").textContent),
+                             null, { timeout: 30000 });
+  check(await page.$eval("#lm-left-n_imf", (x) => x.disabled) && !(await page.$eval("#lm-left-sn_n", (x) => x.disabled)),
+        "a scanned breast: what the scan measures is taken from it, the tape's SN-N still entered");
+  await page.click("#model-run");
+  await page.waitForSelector("#model-scan-left", { timeout: 300000 });
+  cli(["patient", docFile], path.join(work, "scan_model"));
+  const model = JSON.parse(fs.readFileSync(path.join(work, "scan_model", "patient_model.json"), "utf8"));
+  const left = model.sides.find((x) => x.side === "left");
+  for (const key of ["n_imf_mm", "base_width_mm", "sn_n_mm"]) {
+    const shown = await page.textContent(`[data-key="left-${key}"]`);
+    check(shown === (left.achieved[key] / 10).toFixed(1) && Math.abs(left.achieved[key] - left.target[key]) <= 4,
+          `scanned left ${key}: the page shows the CLI's ${shown} cm, within 4 mm of the scan's ${(left.target[key] / 10).toFixed(1)}`);
+  }
+  const mean = await page.textContent('[data-key="left-scan-mean"]');
+  check(mean === left.scan.model_to_scan_mm.mean.toFixed(1) && left.scan.model_to_scan_mm.mean < 10,
+        `the model's distance from the scan is the CLI's (${mean} mm mean)`);
+  await page.$eval("#model-result", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, "0-consult-scan-model.png") });
+  for (const side of ["left", "right"])
+    for (const k of ["grams", "sn_n_mm"]) await page.fill(`#goal-${side}-${k}`, "");
+  await page.fill("#goal-left-grams", "120");
+  await page.fill("#goal-left-sn_n_mm", "23.5");
+  await page.click("#goal-run");
+  await page.waitForFunction(() => /goal/.test(document.querySelector("#goal-message").textContent), null, { timeout: 900000 });
+  await page.waitForFunction(() => window.breastsimApp.torsoShown && window.breastsimApp.torsoShown.scans === 1, null,
+                             { timeout: 60000 });
+  const torso = await page.evaluate(() => window.breastsimApp.torsoShown);
+  check(torso.breasts === 1 && torso.drawings === 1, `the scanned breast is drawn before surgery as its scan, marked (${torso.vertices} vertices)`);
+  await page.click("#torso-presets button[data-preset=oblique]");
+  await page.waitForTimeout(200);
+  await page.screenshot({ path: path.join(shots, "0-torso-scan.png") });
+  await page.click("#consult-report");
+  await page.waitForFunction((old) => {
+    const a = document.querySelector("#consult-report-open");
+    return a && a.getAttribute("href") !== old;
+  }, firstReport, { timeout: 60000 });
+  const tab = await page.context().newPage();
+  try {
+    await tab.goto(new URL(await page.getAttribute("#consult-report-open", "href"), url).href);
+    const note = await tab.textContent('[data-key="scan-note"]');
+    check(note.includes(`${(left.scan.model_to_scan_mm.mean / 10).toFixed(1)} cm from the scanned surface`),
+          `the patient's report says how far the model is from her scan (${note.slice(0, 90)}...)`);
+  } finally {
+    await tab.close();
+  }
+  check(errors.length === 0, "no console errors with a scan" + (errors.length ? ": " + errors : ""));
 }
 
 async function main() {
@@ -188,7 +262,8 @@ async function main() {
     const errors = [];
     page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
     page.on("pageerror", (e) => errors.push(String(e)));
-    await walk(page, errors, work);
+    const firstReport = await walk(page, errors, work);
+    await scanWalk(page, errors, work, firstReport);
   } finally {
     await browser.close();
     fs.rmSync(profile, { recursive: true, force: true });

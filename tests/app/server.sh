@@ -157,6 +157,30 @@ print("ok: the scan job's model, neutral state and postures equal scan-model, ne
                                                                        1e3 * a[0]["projection_m"]))
 PY
 
+# A breast of the consultation as its scan: the patient job on the upload equals the CLI's
+# `patient` on the same file.
+uploads consult_scan "$work/patient/scan.stl" "$work/scan_job.json" "$CASES/patient_example.json" "$work/consult_scan.json"
+/usr/bin/python3 - "$CASES/patient_example.json" "$work/patient/scan.stl" "$work/consult_patient.json" <<'PY'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+doc["left"] = {"scan": {"file": sys.argv[2], "units": "mm"}, "sn_n": doc["left"]["sn_n"],
+               "nipple_midline": doc["left"]["nipple_midline"]}
+json.dump(doc, open(sys.argv[3], "w"))
+PY
+"$BIN" -q patient "$work/consult_patient.json" --set geometry.mesh_size=0.012 --tolerance 4 --out "$work/cli-consult" > /dev/null
+/usr/bin/python3 - "$work/consult_scan.json" "$work/cli-consult/patient_model.json" <<'PY'
+import json, sys
+app = json.load(open(sys.argv[1]))["summary"]["patient_model"]["sides"][0]
+cli = json.load(open(sys.argv[2]))["sides"][0]
+assert app["side"] == cli["side"] == "left" and "scan" in app
+for k in ("n_imf_mm", "base_width_mm", "sn_n_mm"):
+    assert abs(app["achieved"][k] - cli["achieved"][k]) < 1e-9, (k, app["achieved"][k], cli["achieved"][k])
+for k in ("mean", "p95", "max"):
+    assert abs(app["scan"]["model_to_scan_mm"][k] - cli["scan"]["model_to_scan_mm"][k]) < 1e-9, k
+print("ok: the consultation's scanned breast equals the CLI's `patient` on the same scan (model %.1f mm from it)"
+      % app["scan"]["model_to_scan_mm"]["mean"])
+PY
+
 # Surgery on the scanned breast: the app's job on the scan job's neutral case equals the CLI's
 # `breastsim surgery` on that case file with the same plan.
 uploads scan_surgery "$work/scan_job.json" "$work/scan_surgery.json"

@@ -203,6 +203,43 @@ def scan_surgery(api, scan_job_file, out):
     json.dump({"record": job, "summary": json.loads(data)}, open(out, "w"))
 
 
+def consult_scan(api, stl_file, scan_job_file, patient_file, out):
+    """A breast of the consultation as its standing scan: uploaded for the
+    consultation (kept, not modelled), named by its id in a patient job;
+    the refused uploads and patient requests name the field."""
+    stl = open(stl_file, "rb").read()
+    q = "?format=stl&units=mm"
+    for query, text in [(q + "&use=print", "use = 'print': allowed consultation, model"),
+                        (q + "&use=consultation&posture=supine", "a consultation's scan is taken standing")]:
+        s, r = post_scan(api, query, stl)
+        check(s == 400 and text in r["error"], f"consultation upload {query} refused: {r['error'][:80]}")
+    s, r = post_scan(api, q + "&use=consultation", stl)
+    check(s == 202, f"a scan for the consultation is accepted ({s} {r})")
+    upload = r["id"]
+    job = api.wait(upload, ("done", "failed", "cancelled"), 60)
+    stages = [e["stage"] for e in channel(api, upload)]
+    check(job["state"] == "done" and stages == ["scan kept for the consultation"],
+          f"it is kept, not modelled ({job['state']}: {stages})")
+    doc = json.load(open(patient_file))
+    tape = {"sn_n": doc["left"]["sn_n"], "nipple_midline": doc["left"]["nipple_midline"]}
+    base = {"kind": "patient", "overrides": {"geometry.mesh_size": 0.012}, "tolerance_mm": 4}
+    for scan, what in [({"upload": upload, "file": "/etc/passwd"}, "left.scan.file: not allowed in the app"),
+                       ({"upload": upload, "units": "m"}, "left.scan.units: not allowed in the app"),
+                       ({"upload": "../../etc"}, "left.scan.upload = \"../../etc\": expected the id of the uploaded scan"),
+                       ({}, "left.scan.upload = null: expected the id")]:
+        s, r = api.json("POST", "/api/jobs", {**base, "patient": {**doc, "left": {"scan": scan, **tape}}})
+        check(s == 400 and what in r["error"], f"a scanned side refused: {r.get('error', '')[:90]}")
+    model_scan = json.load(open(scan_job_file))["id"]
+    for other, what in [("0123456789abcdef", "no such upload"), (model_scan, "not a scan uploaded for the consultation")]:
+        s, r = api.json("POST", "/api/jobs", {**base, "patient": {**doc, "left": {"scan": {"upload": other}, **tape}}})
+        rec = api.wait(r["id"], ("done", "failed", "cancelled"), 120)
+        check(rec["state"] == "failed" and what in rec["error"], f"a patient job on another upload fails: {rec['error'][:90]}")
+    s, r = api.json("POST", "/api/jobs", {**base, "patient": {**doc, "left": {"scan": {"upload": upload}, **tape}}})
+    rec = api.wait(r["id"], ("done", "failed", "cancelled"), 600)
+    check(rec["state"] == "done", f"the patient job on the uploaded scan is done ({rec['state']}: {rec['error']})")
+    json.dump(rec, open(out, "w"))
+
+
 if __name__ == "__main__":
     api = Api(int(sys.argv[1]))
     phase = sys.argv[2]
@@ -210,6 +247,8 @@ if __name__ == "__main__":
         recording(api, sys.argv[3], sys.argv[4], sys.argv[5])
     elif phase == "scan":
         scan(api, sys.argv[3], sys.argv[4], sys.argv[5])
+    elif phase == "consult_scan":
+        consult_scan(api, sys.argv[3], sys.argv[4], sys.argv[5], sys.argv[6])
     elif phase == "scan_surgery":
         scan_surgery(api, sys.argv[3], sys.argv[4])
     else:

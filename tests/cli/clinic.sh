@@ -114,5 +114,33 @@ printf '{"format": "breastsim-patient/1", "units": "cm", "left": {"sn_n": 240, "
 expect2 "'left.sn_n' = 240 cm is out of range: \[15, 45\] cm" patient "$work/bad.json" --out "$work/x"
 expect2 "the mesh is too coarse for this tolerance" patient "$CASES/patient_example.json" \
   --set geometry.mesh_size=0.012 --tolerance 1 --out "$work/x"
+printf '{"format": "breastsim-patient/1", "units": "cm", "left": {"scan": {"file": "none.stl", "units": "mm"}, "sn_n": 24, "nipple_midline": 10}}' > "$work/noscan.json"
+expect2 "no such file" patient "$work/noscan.json" --out "$work/x"
 test ! -e "$work/x"
+
+# The left breast as its standing scan (a synthetic patient's, noisy, with
+# holes; the file named relative to the patient file): its landmarks
+# measured on the scan, the model fitted to them and compared with it, a
+# plan whose drawing puts the scan's skin, its tapes and the marking on it.
+"$BIN" -q synthetic-patient --seed 2 --volume 500 --ptosis 0.3 --lateral 0.1 --asymmetry 0.15 --posture standing \
+  --noise 0.0005 --holes 2 --format stl --out "$work/scan" > /dev/null
+printf '{"format": "breastsim-patient/1", "units": "cm", "left": {"scan": {"file": "scan/scan.stl", "units": "mm"}, "sn_n": 24, "nipple_midline": 10}}' > "$work/scanned.json"
+"$BIN" -q plan "$work/scanned.json" "${coarse[@]}" --target left.grams=120 --out "$work/scan_plan" > /dev/null
+/usr/bin/python3 - "$work/scan_plan" <<'PY'
+import json, sys, os
+m = json.load(open(os.path.join(sys.argv[1], "patient_model.json")))["sides"][0]
+p = json.load(open(os.path.join(sys.argv[1], "plan.json")))["sides"][0]
+sc, t, a = m["scan"], m["target"], m["achieved"]
+assert sc["file"] == "scan.stl" and sc["points"] > 300 and not sc["notch_given"], sc
+for k in ("n_imf_mm", "base_width_mm", "projection_mm"): # measured on the scan: the model's targets
+    assert t[k] == sc["measured"][k], (k, t, sc)
+assert abs(a["n_imf_mm"] - t["n_imf_mm"]) <= 4 and abs(a["base_width_mm"] - t["base_width_mm"]) <= 4, (t, a)
+assert 0 < sc["model_to_scan_mm"]["mean"] < 10 and abs(sc["volume_error"]) < 0.4, sc
+d = p["drawing"]["scan"]
+assert len(d["skin"]["vertices"]) > 3000 and not d["skin"]["mirror_x"], len(d["skin"]["vertices"])
+assert abs(d["before"]["sn_n_mm"] - 240) < 0.5 and abs(d["before"]["n_imf_mm"] - t["n_imf_mm"]) < 0.01, d["before"]
+assert len(d["marking"]) == 5 and p["met"], (len(d["marking"]), p["unmet"])
+print("scan: N-IMF %.1f mm measured, model %.1f mm from the scan, %+.0f %% volume; marking on the scan"
+      % (t["n_imf_mm"], sc["model_to_scan_mm"]["mean"], 100 * sc["volume_error"]))
+PY
 echo "clinic: all checks hold"

@@ -7,7 +7,7 @@ import { View3D, POINT_COLOURS } from "/view3d.js";
 import { reportPictures, usesFit } from "/report.js";
 import { SWEEP_KEYS, sweepPictures, sweepRequest, sweepTable } from "/sweep.js";
 import { evaluationStage, misfitCaption, misfitPlotSvg } from "/misfit_plot.js";
-import { TIPS, buildConsultForms, fillPatient, goalTargets, patientDocument, patientTable, planTables } from "/consult.js";
+import { TIPS, attachScan, buildConsultForms, fillPatient, goalTargets, patientDocument, patientTable, planTables } from "/consult.js";
 import { RECORDING_FORMAT, SCAN_LIMITS, recordingText, scanSummaryHtml, scanUploadPath, uploadScan } from "/patient_files.js";
 
 const $ = (s) => document.querySelector(s);
@@ -438,9 +438,13 @@ async function showTorso(mode) {
                    drawing: side.drawing });
   }
   view.showTorso(breasts, mode, $("#view-tapes").checked);
+  const scanned = breasts.filter((b) => b.drawing && b.drawing.scan).map((b) => b.side);
+  if (scanned.length && mode !== "after")
+    $("#view-legend").textContent += `; before surgery the ${scanned.join(" and ")} breast is its scan`;
   state.torso = { breasts };
   app.torsoShown = { mode, breasts: breasts.length, vertices: view.drawnVertices(), linked: !!view.split,
-                     drawings: breasts.filter((b) => b.drawing).length };
+                     drawings: breasts.filter((b) => b.drawing).length,
+                     scans: breasts.filter((b) => b.drawing && b.drawing.scan).length };
 }
 
 // The consultation's report: pictures of both breasts before | after (front
@@ -737,6 +741,8 @@ async function main() {
   for (const e of document.querySelectorAll("[data-tip]")) e.title = TIPS[e.dataset.tip];
   $("#patient-file").addEventListener("change", loadPatientFile);
   $("#model-run").addEventListener("click", modelPatient);
+  for (const side of ["left", "right"])
+    for (const id of [`#lm-${side}-scan`, `#lm-${side}-scan-units`]) $(id).addEventListener("change", () => attachScan($, side));
   $("#model-cancel").addEventListener("click", () => cancel("patient"));
   $("#goal-run").addEventListener("click", findPlans);
   $("#goal-cancel").addEventListener("click", () => cancel("plan"));

@@ -4,7 +4,12 @@
 // surgery and the plans that meet them (a `plan` job), with a symmetry table
 // before and after. Numbers are the jobs' own (docs/CLINIC.md).
 
+import { scanUploadPath, uploadScan } from "/patient_files.js";
+
 const SIDES = ["left", "right"];
+// The sides given as a standing scan: {id, name} of the upload (patient_scans.hpp).
+export const scans = {};
+const MEASURED_ON_SCAN = ["n_imf", "base_width", "projection"];
 export const LANDMARKS = [
   ["sn_n", "Sternal notch to nipple", "cm", true], ["n_imf", "Nipple to fold", "cm", true],
   ["base_width", "Breast width", "cm", true], ["nipple_midline", "Nipple to midline", "cm", true],
@@ -31,6 +36,8 @@ export const TIPS = {
   volume: "Breast volume: the breast's volume in front of the chest wall in its unloaded shape (as if weightless), in cm³; 1 cm³ of breast tissue weighs about 0.97 g.",
   nipple_to_base: "Nipple to base: the nipple's distance in front of the chest wall (the breast's base plane), in mm, before → after; green when within 5 mm of the ideal named below the table.",
   nipple_height: "Nipple below the notch: the nipple's height below the sternal notch, standing.",
+  scan: "Standing scan (optional): a 3D surface scan of this breast taken standing (STL, PLY or OBJ, coordinates in mm or m). Nipple to fold, width, projection and ptosis grade are then measured on the scan; the sternal notch to nipple and the nipple to midline are still measured with a tape.",
+  model_to_scan: "How far the model's standing skin lies from the scan's: the mean distance over the scanned skin (with both placed at the fold), and the two volumes.",
   bsa: "Body surface area from height and weight (Mosteller: the square root of height [cm] x weight [kg] / 3600); resections are weighed in grams per m² of it.",
 };
 
@@ -44,11 +51,33 @@ function tableRows(rows, cell) {
 
 export function buildConsultForms(root) {
   root.querySelector("#landmarks tbody").innerHTML =
+    `<tr title="${TIPS.scan}"><td>Standing scan (optional)</td>` + SIDES.map((s) => `<td><input type="file" ` +
+      `id="lm-${s}-scan" accept=".stl,.ply,.obj"> <select id="lm-${s}-scan-units" aria-label="unit of the ${s} scan">` +
+      `<option value="mm">mm</option><option value="m">m</option></select> <span class="hint" id="lm-${s}-scan-status">` +
+      `</span></td>`).join("") + "</tr>" +
     tableRows(LANDMARKS, (k, s) => `<input type="number" step="0.1" id="lm-${s}-${k}">`) +
     `<tr title="${TIPS.ptosis}"><td>Ptosis grade</td>` + SIDES.map((s) => `<td><select id="lm-${s}-ptosis">` +
       PTOSIS.map((p, i) => `<option value="${i - 1}">${p}</option>`).join("") + "</select></td>").join("") + "</tr>";
   root.querySelector("#goals tbody").innerHTML =
     tableRows(GOALS, (k, s) => `<input type="number" step="any" id="goal-${s}-${k}">`);
+}
+
+/// Upload side `s`'s chosen scan for the consultation: on success its
+/// measurements are taken from the scan (their fields are disabled).
+export async function attachScan($, s) {
+  const file = $(`#lm-${s}-scan`).files[0], status = $(`#lm-${s}-scan-status`);
+  delete scans[s];
+  for (const k of MEASURED_ON_SCAN) $(`#lm-${s}-${k}`).disabled = false;
+  $(`#lm-${s}-ptosis`).disabled = false;
+  if (!file) return void (status.textContent = "");
+  status.textContent = `uploading ${file.name} ...`;
+  const path = scanUploadPath(file, $(`#lm-${s}-scan-units`).value, "standing", 0) + "&use=consultation";
+  const r = await uploadScan(file, path);
+  if (r.status !== 202) return void (status.textContent = `${file.name}: ${r.json.error}`);
+  scans[s] = { id: r.json.id, name: file.name };
+  for (const k of MEASURED_ON_SCAN) $(`#lm-${s}-${k}`).disabled = true;
+  $(`#lm-${s}-ptosis`).disabled = true;
+  status.textContent = `${file.name}: nipple to fold, width, projection and ptosis will be measured on it`;
 }
 
 /// The patient document (breastsim-patient/1, cm) of the filled-in sides.
@@ -57,6 +86,11 @@ export function patientDocument($) {
   const id = $("#patient-id").value.trim();
   if (id) doc.id = id;
   for (const s of SIDES) {
+    if (scans[s]) { // measured on the scan; the tape's two as entered (null: named as missing by the server)
+      const v = (k) => ($(`#lm-${s}-${k}`).value === "" ? null : Number($(`#lm-${s}-${k}`).value));
+      doc[s] = { scan: { upload: scans[s].id }, sn_n: v("sn_n"), nipple_midline: v("nipple_midline") };
+      continue;
+    }
     const side = {};
     for (const [k, , , required] of LANDMARKS) {
       const v = $(`#lm-${s}-${k}`).value;
@@ -123,11 +157,16 @@ export function patientTable(model) {
   const fit = model.sides.map((x) => `${x.side} breast: every landmark within ${x.largest_error_mm.toFixed(1)} mm ` +
     `(accepted ${model.tolerance_mm} mm)`).join("; ");
   const notes = model.sides.flatMap((x) => x.notes.map((n) => `<li>${x.side}: ${n}</li>`)).join("");
+  const scanned = model.sides.filter((x) => x.scan).map((x) => `<p class="hint" id="model-scan-${x.side}" ` +
+    `title="${TIPS.model_to_scan}">${x.side} breast: measured on its scan ${x.scan.file}; the model's skin lies ` +
+    `<b data-key="${x.side}-scan-mean">${x.scan.model_to_scan_mm.mean.toFixed(1)}</b> mm from the scan's on average ` +
+    `(95 % within ${x.scan.model_to_scan_mm.p95.toFixed(1)} mm); volume ${x.scan.volume_cm3.model.toFixed(0)} cm³ ` +
+    `against the scan's ${x.scan.volume_cm3.scan.toFixed(0)} cm³.</p>`).join("");
   const expert = model.sides.map((x) => `${x.side}: cap R = ${(1e3 * x.R_m).toFixed(1)} mm, H = ${(1e3 * x.H_m).toFixed(1)} mm, ` +
     `moduli x ${x.stiffness_factor.toPrecision(3)} (tissue mu = ${x.tissue_mu_Pa.toPrecision(3)} Pa), ${x.solves} standing solves`).join("; ");
   return `<table id="model-table"><thead><tr><th rowspan="2">cm</th><th colspan="2">left</th><th colspan="2">right</th></tr>` +
     `<tr><th>measured</th><th>model</th><th>measured</th><th>model</th></tr></thead><tbody>${rows.join("")}</tbody></table>` +
-    `<p class="hint" id="model-fit">${fit}</p>` + (notes ? `<ul class="hint">${notes}</ul>` : "") + bodyLine(model.body) +
+    `<p class="hint" id="model-fit">${fit}</p>` + scanned + (notes ? `<ul class="hint">${notes}</ul>` : "") + bodyLine(model.body) +
     `<p class="expert-only expert-note">Model: ${expert}.</p>`;
 }
 

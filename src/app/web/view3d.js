@@ -158,7 +158,8 @@ export class View3D {
   // Both breasts on the chest, in the patient's frame (mm; the sternal notch
   // at the origin, the patient's left to +x, up +y, forward +z): each of
   // `breasts` ({side, notch, pre, post, nipples, drawing}: the notch in that
-  // breast's frame, its standing surfaces, the plan's drawing) placed by its
+  // breast's frame, its standing surfaces, the plan's drawing; a scanned
+  // breast is drawn before surgery as its scan, drawing.scan) placed by its
   // notch, the right one mirrored. `mode`: "before", "after", "both" (before
   // and after in two linked views, one camera) or "overlay" (before
   // translucent). The chest is a translucent plane; the notch and the
@@ -170,12 +171,14 @@ export class View3D {
     const groups = stages.map((stage) => {
       const group = new THREE.Group();
       for (const b of breasts) {
-        const doc = b[stage];
+        const scan = stage === "pre" && b.drawing && b.drawing.scan; // a scanned breast: before is its scan
+        const doc = scan ? scan.skin : b[stage];
         if (!doc) continue;
         const place = (p) => [(b.side === "left" ? 1 : -1) * (p[0] - b.notch[0]) * 1e3, (p[2] - b.notch[2]) * 1e3,
                               p[1] * 1e3];
         group.add(placedMesh(doc, stage === "pre" ? SKIN : POST, place, mode === "overlay" && stage === "pre" ? 0.45 : 1));
-        if (b.nipples && b.nipples[stage]) group.add(marker(place(b.nipples[stage]), 0x3b3040));
+        const nipple = scan ? scan.before.n_imf[0] : b.nipples && b.nipples[stage];
+        if (nipple) group.add(marker(place(nipple), 0x3b3040));
         if (tapes && mode !== "overlay" && b.drawing) group.add(drawingFor(b, stage, place));
       }
       if (stage === "pre" || mode !== "overlay") group.add(marker([0, 0, 0], 0x2471a3), chestPlane(0)); // notch, chest
@@ -350,7 +353,8 @@ const TAPE = 0x1a5276, MARKER_PEN = 0x6c3483;
 // The drawing of one breast at one stage: its tapes (SN-N from the notch, N-IMF
 // down the meridian) labelled in cm, and before surgery the Wise marking.
 function drawingFor(b, stage, place) {
-  const group = new THREE.Group(), d = b.drawing[stage === "pre" ? "before" : "after"];
+  const scan = stage === "pre" && b.drawing.scan; // on a scanned breast: the tapes and the marking on its scan
+  const group = new THREE.Group(), d = scan ? scan.before : b.drawing[stage === "pre" ? "before" : "after"];
   // SN-N's label on its tape, 40 % of the way from the notch; N-IMF's under the fold.
   const sn = d.sn_n.map(place), fold = d.n_imf.map(place);
   group.add(tube(sn, TAPE, 0.9), tube(fold, TAPE, 0.9));
@@ -359,7 +363,7 @@ function drawingFor(b, stage, place) {
   const end = fold[fold.length - 1];
   group.add(label3d(`N-IMF ${(d.n_imf_mm / 10).toFixed(1)} cm`, [end[0], end[1] - 16, end[2] + 25]));
   if (stage === "pre")
-    for (const line of b.drawing.marking) group.add(tube(line.map(place), MARKER_PEN, 0.7));
+    for (const line of (scan || b.drawing).marking) group.add(tube(line.map(place), MARKER_PEN, 0.7));
   return group;
 }
 
