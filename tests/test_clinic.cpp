@@ -3,6 +3,7 @@
 // measures on an exact spherical cap against their closed forms, the
 // patient file's checks, and patient models that reproduce their landmarks.
 #include "errors.hpp"
+#include "input_error_message.hpp"
 #include "landmarks.hpp"
 #include "patient_fit.hpp"
 #include "skin_measures.hpp"
@@ -121,15 +122,7 @@ nlohmann::json patient_doc()
 
 std::string refusal(const nlohmann::json& j)
 {
-  try
-  {
-    patient_from_json(j, "p.json");
-  }
-  catch (const InputError& e)
-  {
-    return e.what();
-  }
-  return "";
+  return fixtures::message_of([&] { patient_from_json(j, "p.json"); });
 }
 } // namespace
 

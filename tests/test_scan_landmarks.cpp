@@ -4,6 +4,7 @@
 // model-to-scan distance and volume of a skin against itself, and the
 // patient file's refusals for scanned sides.
 #include "errors.hpp"
+#include "input_error_message.hpp"
 #include "landmarks.hpp"
 #include "scan_fixtures.hpp"
 #include "scan_landmarks.hpp"
@@ -30,15 +31,7 @@ SideScan hemisphere_scan(const scan_fixtures::ScratchDir& dir)
 
 std::string refusal(const nlohmann::json& j)
 {
-  try
-  {
-    patient_from_json(j, "p.json");
-  }
-  catch (const InputError& e)
-  {
-    return e.what();
-  }
-  return "";
+  return fixtures::message_of([&] { patient_from_json(j, "p.json"); });
 }
 } // namespace
 
