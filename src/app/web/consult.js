@@ -114,6 +114,10 @@ export function fillPatient($, doc) {
   for (const s of SIDES)
     for (const [k] of LANDMARKS) $(`#lm-${s}-${k}`).value = doc[s] && doc[s][k] !== undefined ? doc[s][k] : "";
   for (const s of SIDES) $(`#lm-${s}-ptosis`).value = doc[s] && doc[s].ptosis_grade !== undefined ? doc[s].ptosis_grade : -1;
+  for (const s of SIDES) // a file names its scan by a path on the surgeon's machine: the page cannot open it itself
+    if (doc[s] && doc[s].scan && !scans[s])
+      $(`#lm-${s}-scan-status`).textContent = `the file names the scan ${String(doc[s].scan.file || "").split(/[\\/]/).pop()}: ` +
+        "choose it here";
   const body = doc.body || {}, scale = { mm: 0.1, cm: 1, m: 100 }[doc.units] || 1;
   $("#body-height").value = body.height !== undefined ? body.height * scale : "";
   $("#body-weight").value = body.weight_kg !== undefined ? body.weight_kg : "";
