@@ -26,8 +26,9 @@ Command add_patient_command(CLI::App& root)
 {
   auto o = std::make_shared<PatientOptions>();
   auto* app = root.add_subcommand("patient", "a patient model per breast from the clinic's landmarks (SN-N, N-IMF, "
-                                             "base width, nipple to midline; docs/CLINIC.md)");
-  app->add_option("patient", o->patient_file, "patient file (breastsim-patient/1 JSON)")->required();
+                                             "base width, nipple to midline) or its standing scan; docs/CLINIC.md");
+  app->add_option("patient", o->patient_file, "patient file (breastsim-patient/1 JSON; a side's scan file relative to it)")
+      ->required();
   app->add_option("--case", o->case_file, "case file for the material, mesh and solver (default: every default)");
   app->add_option("--set", o->sets, "override a case key (repeatable)")->allow_extra_args(false);
   app->add_option("--tolerance", o->tolerance_mm, "largest landmark error accepted [mm], in [0.1, 10]")

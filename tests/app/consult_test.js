@@ -191,6 +191,7 @@ async function scanWalk(page, errors, work, firstReport) {
   doc.left = { scan: { file: scanFile, units: "mm" }, sn_n: doc.left.sn_n, nipple_midline: doc.left.nipple_midline };
   const docFile = path.join(work, "scan_patient.json");
   fs.writeFileSync(docFile, JSON.stringify(doc));
+  await page.setViewportSize({ width: 1280, height: 900 });
   await page.goto(url);
   await page.waitForFunction(() => window.breastsimApp && window.breastsimApp.ready, null, { timeout: 30000 });
   await page.click("#expert");
@@ -204,6 +205,8 @@ async function scanWalk(page, errors, work, firstReport) {
                              null, { timeout: 30000 });
   check(await page.$eval("#lm-left-n_imf", (x) => x.disabled) && !(await page.$eval("#lm-left-sn_n", (x) => x.disabled)),
         "a scanned breast: what the scan measures is taken from it, the tape's SN-N still entered");
+  await page.$eval("#landmarks", (e) => e.scrollIntoView());
+  await page.screenshot({ path: path.join(shots, "0-consult-scan-landmarks.png") });
   await page.click("#model-run");
   await page.waitForSelector("#model-scan-left", { timeout: 300000 });
   cli(["patient", docFile], path.join(work, "scan_model"));
@@ -246,6 +249,13 @@ async function scanWalk(page, errors, work, firstReport) {
   } finally {
     await tab.close();
   }
+  await page.setViewportSize({ width: 1024, height: 900 });
+  const over = await page.evaluate(() => {
+    const panel = document.querySelector("#panels").getBoundingClientRect();
+    return [...document.querySelectorAll("#consult table, #consult label, #consult span, #consult select")]
+      .filter((e) => e.getBoundingClientRect().right > panel.right + 1).map((e) => e.id || e.tagName);
+  });
+  check(over.length === 0, `at 1024 px the scan's row is not cut off (${over.join(", ") || "all fit"})`);
   check(errors.length === 0, "no console errors with a scan" + (errors.length ? ": " + errors : ""));
 }
 

@@ -51,10 +51,11 @@ function tableRows(rows, cell) {
 
 export function buildConsultForms(root) {
   root.querySelector("#landmarks tbody").innerHTML =
-    `<tr title="${TIPS.scan}"><td>Standing scan (optional)</td>` + SIDES.map((s) => `<td><input type="file" ` +
-      `id="lm-${s}-scan" accept=".stl,.ply,.obj"> <select id="lm-${s}-scan-units" aria-label="unit of the ${s} scan">` +
-      `<option value="mm">mm</option><option value="m">m</option></select> <span class="hint" id="lm-${s}-scan-status">` +
-      `</span></td>`).join("") + "</tr>" +
+    `<tr title="${TIPS.scan}"><td>Standing scan (optional)</td>` + SIDES.map((s) => `<td><label class="pick">` +
+      `<input type="file" id="lm-${s}-scan" accept=".stl,.ply,.obj" hidden>choose…</label> ` +
+      `<select id="lm-${s}-scan-units" aria-label="unit of the ${s} scan"><option value="mm">mm</option>` +
+      `<option value="m">m</option></select><br><span class="hint" id="lm-${s}-scan-status"></span></td>`).join("") +
+      "</tr>" +
     tableRows(LANDMARKS, (k, s) => `<input type="number" step="0.1" id="lm-${s}-${k}">`) +
     `<tr title="${TIPS.ptosis}"><td>Ptosis grade</td>` + SIDES.map((s) => `<td><select id="lm-${s}-ptosis">` +
       PTOSIS.map((p, i) => `<option value="${i - 1}">${p}</option>`).join("") + "</select></td>").join("") + "</tr>";
@@ -70,14 +71,15 @@ export async function attachScan($, s) {
   for (const k of MEASURED_ON_SCAN) $(`#lm-${s}-${k}`).disabled = false;
   $(`#lm-${s}-ptosis`).disabled = false;
   if (!file) return void (status.textContent = "");
-  status.textContent = `uploading ${file.name} ...`;
+  status.textContent = `uploading ${file.name.slice(0, 24)} ...`;
   const path = scanUploadPath(file, $(`#lm-${s}-scan-units`).value, "standing", 0) + "&use=consultation";
   const r = await uploadScan(file, path);
-  if (r.status !== 202) return void (status.textContent = `${file.name}: ${r.json.error}`);
+  if (r.status !== 202) return void (status.textContent = `${file.name.slice(0, 24)}: ${r.json.error}`);
   scans[s] = { id: r.json.id, name: file.name };
   for (const k of MEASURED_ON_SCAN) $(`#lm-${s}-${k}`).disabled = true;
   $(`#lm-${s}-ptosis`).disabled = true;
-  status.textContent = `${file.name}: nipple to fold, width, projection and ptosis will be measured on it`;
+  status.textContent = `${file.name.slice(0, 24)}: measured on it`;
+  status.title = "Nipple to fold, width, projection and ptosis grade will be measured on this scan.";
 }
 
 /// The patient document (breastsim-patient/1, cm) of the filled-in sides.
