@@ -39,4 +39,19 @@ for p in s['postures']:
 # The AMG path (GMRES + GAMG, finest level smoothed by SOR: on 2 ranks a
 # local symmetric sweep per rank, so the Krylov counts differ, not the result).
 serial_vs_mpi amg --set solver.linear=amg --set postures.names=standing,supine
-echo "5 passed, 0 failed"
+# The patient models of both example breasts (the fit's R and H rounded to
+# 0.1 um, so both runs mesh the same caps): the same models.
+for ranks in 1 2; do
+  mpirun -n $ranks "$BIN" -q patient "$CASES/patient_example.json" --set geometry.mesh_size=0.012 --tolerance 4 \
+    --out "$work/patient_$ranks" > /dev/null
+done
+/usr/bin/python3 - "$work/patient_1/patient_model.json" "$work/patient_2/patient_model.json" <<'PY'
+import json, sys
+a, b = (json.load(open(f))["sides"] for f in sys.argv[1:])
+for x, y in zip(a, b, strict=True):
+    assert x["R_m"] == y["R_m"] and x["H_m"] == y["H_m"], (x["side"], x["R_m"], y["R_m"], x["H_m"], y["H_m"])
+    assert max(abs(p - q) for p, q in zip(x["nipple_standing_m"], y["nipple_standing_m"])) < 1e-9, x["side"]
+    for k, v in x["achieved"].items():
+        assert abs(v - y["achieved"][k]) < 1e-6, (x["side"], k, v, y["achieved"][k])
+PY
+echo "6 passed, 0 failed"
