@@ -125,9 +125,10 @@ public:
   Config config(const std::vector<double>& y) const
   {
     auto round = [](double v) { return std::round(v * 1e7) / 1e7; };
+    const double R = round(y[0]);
     Config c = _base;
-    c.set("geometry.R", round(y[0]));
-    c.set("geometry.H", round(y[1]));
+    c.set("geometry.R", R);
+    c.set("geometry.H", std::min(round(y[1]), 1.5 * R)); // a cap's height is at most 1.5 R
     if (_stiffness)
       for (const auto& key : moduli())
         c.set(key, std::exp(y[2]) * _base.number(key));
