@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mms.hpp"
+#include "mpi_sum.hpp"
 #include "geometry_options.hpp"
 #include "half_cap.hpp"
 #include "breastsim_registry.hpp"
@@ -58,13 +59,6 @@ MmsForms mms_forms(int order)
             functionspace_form_mms_p2_mms_residual, expression_mms_p2_u_ex,
             form_mms_p2_patch_residual, form_mms_p2_patch_error_l2, form_mms_p2_patch_error_h1};
   throw InputError(fmt::format("MMS: element order {} is not compiled in (1, 2)", order));
-}
-
-double sum_all(double local, MPI_Comm comm)
-{
-  double global = 0;
-  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
-  return global;
 }
 } // namespace
 
@@ -268,7 +262,7 @@ MmsLevel solve_mms(const Config& c, int order, double mesh_size, int refinements
     interpolate_exact(*u, *uf.u_ex, m, bcs);
   L.newton_iterations = converge(newton, r0, order, refinements);
 
-  auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
+  auto scalar = [&](ufcx_form* f) { return mpi_sum(fem::assemble_scalar(*create(f, 0)), comm); };
   L.error_l2 = std::sqrt(scalar(patch ? uf.patch_error_l2 : uf.error_l2));
   L.error_h1 = std::sqrt(scalar(patch ? uf.patch_error_h1 : uf.error_h1));
   L.rel_l2 = L.error_l2 / std::sqrt(scalar(uf.norm_l2));

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "mms_mixed.hpp"
+#include "mpi_sum.hpp"
 #include "errors.hpp"
 #include "geometry_options.hpp"
 #include "mixed_space.hpp"
@@ -68,12 +69,6 @@ void check_request(const Config& c, bool mixed, int order)
                                  c.number("tissue.lambda")));
 }
 
-double sum_all(double local, MPI_Comm comm)
-{
-  double global = 0;
-  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
-  return global;
-}
 
 /// Sliding symmetry u_x = 0 on x = 0: the x component of the displacement
 /// (of the mixed space: src/model/mixed_space.hpp).
@@ -158,7 +153,7 @@ IncompressibleMmsLevel solve_incompressible_mms(const Config& c, bool mixed, int
   IncompressibleMmsLevel L;
   L.refinements = refinements;
   L.newton_iterations = solve_to_roundoff(newton, mixed, refinements);
-  auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
+  auto scalar = [&](ufcx_form* f) { return mpi_sum(fem::assemble_scalar(*create(f, 0)), comm); };
   L.error_l2 = std::sqrt(scalar(uf.error_l2));
   L.error_h1 = std::sqrt(scalar(uf.error_h1));
   L.rel_l2 = L.error_l2 / std::sqrt(scalar(uf.norm_l2));

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 #include "sphere_bench.hpp"
+#include "mpi_sum.hpp"
 #include "tagged_mesh.hpp"
 #include "errors.hpp"
 #include "mesh_from_gmsh.hpp"
@@ -190,12 +191,6 @@ meshes::TaggedMesh octant_shell(const SphereBenchSpec& s, int order, double mesh
   return meshes::extract_tagged_mesh(order, 0);
 }
 
-double sum_all(double local, MPI_Comm comm)
-{
-  double global = 0;
-  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
-  return global;
-}
 
 void check_inputs(const SphereBenchSpec& s, int order, double mesh_size, int load_steps, bool mixed)
 {
@@ -326,7 +321,7 @@ SphereBenchResult solve_sphere_bench(const SphereBenchSpec& s, int order, double
 
   SphereBenchResult res;
   res.newton_iterations = apply_pressure(newton, *p0, s, order, load_steps);
-  auto scalar = [&](ufcx_form* f) { return sum_all(fem::assemble_scalar(*create(f, 0)), comm); };
+  auto scalar = [&](ufcx_form* f) { return mpi_sum(fem::assemble_scalar(*create(f, 0)), comm); };
   res.u_inner = scalar(forms.ur_inner) / scalar(forms.area_inner);
   res.u_outer = scalar(forms.ur_outer) / scalar(forms.area_outer);
   res.cells = m.mesh->topology().index_map(3)->size_global();

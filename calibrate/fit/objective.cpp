@@ -23,6 +23,7 @@ void Objective::set_correction(std::vector<double> d)
 {
   _correction = std::move(d);
   _last_y.clear();
+  _last_J = {};
   _best_y.clear();
   _best_chi2 = std::numeric_limits<double>::infinity();
 }
@@ -82,6 +83,13 @@ std::vector<std::vector<double>> Objective::residuals_at(const std::vector<std::
 }
 
 Matrix Objective::jacobian(const std::vector<double>& y, double h, bool central)
+{
+  if (_last_J.y.empty() || _last_J.y != y || _last_J.h != h || _last_J.central != central)
+    _last_J = {y, h, central, compute_jacobian(y, h, central)};
+  return _last_J.J;
+}
+
+Matrix Objective::compute_jacobian(const std::vector<double>& y, double h, bool central)
 {
   const std::vector<double> r0 = residuals(y);
   Matrix J(r0.size(), std::vector<double>(y.size()));

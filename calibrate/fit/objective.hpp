@@ -53,6 +53,8 @@ public:
   /// one linear solve per parameter and posture, no evaluation counted);
   /// by forward differences with step h in y (central if `central`) for the
   /// neutral shape R, H (the mesh moves), each column one evaluation.
+  /// The last Jacobian is remembered: asked again at the same y, h and
+  /// `central`, it is not computed again.
   Matrix jacobian(const std::vector<double>& y, double h, bool central = false);
   /// d chi2/dy = 2 J^T r with jacobian(y, h).
   std::vector<double> gradient(const std::vector<double>& y, double h);
@@ -75,6 +77,7 @@ private:
   std::vector<double> solve(const std::vector<double>& y, std::vector<Observables>& obs);
   /// Count the evaluation at y, keep the best point, call the callback.
   void record(const std::vector<double>& y, const std::vector<double>& r);
+  Matrix compute_jacobian(const std::vector<double>& y, double h, bool central);
   /// r at each point, over the groups (bookkeeping in order on every rank).
   std::vector<std::vector<double>> residuals_at(const std::vector<std::vector<double>>& points);
 
@@ -88,5 +91,12 @@ private:
   std::vector<double> _last_y, _last_r, _best_y, _correction;
   std::vector<Observables> _obs;
   double _best_chi2 = 0;
+  struct LastJacobian
+  {
+    std::vector<double> y;
+    double h = 0;
+    bool central = false;
+    Matrix J;
+  } _last_J;
 };
 } // namespace breastsim::calibration

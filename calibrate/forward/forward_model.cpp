@@ -252,7 +252,10 @@ std::vector<Observables> ForwardModel::sensitivities(std::size_t i, const Config
 
 std::vector<nlohmann::json> ForwardModel::surfaces(const Config& c)
 {
-  solve(c);
+  prepare(c);
+  for (std::size_t i = 0; i < _postures.size(); ++i)
+    if (_last[i].empty() || _solved_at[i] != c.to_json())
+      solve_posture(i, c);
   std::vector<nlohmann::json> docs;
   auto u = _model->displacement()->x()->mutable_array();
   for (std::size_t i = 0; i < _postures.size(); ++i)

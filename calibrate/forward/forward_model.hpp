@@ -76,8 +76,8 @@ public:
   /// otherwise). Collective.
   std::vector<Observables> sensitivities(std::size_t i, const Config& c,
                                          const std::vector<std::string>& keys);
-  /// Solve case `c` and return the skin surface document (surface_export.hpp)
-  /// of each posture, for pictures. Collective; complete on rank 0.
+  /// The skin surface document (surface_export.hpp) of each posture at case
+  /// `c`, for pictures: a posture last solved at `c` is not solved again. Collective; complete on rank 0.
   std::vector<nlohmann::json> surfaces(const Config& c);
 
   int posture_solves() const { return _posture_solves; }

@@ -16,7 +16,7 @@ constexpr double max_length = 1.0;
 /// Default measurement error when the file gives none [m].
 constexpr double default_sigma = 1e-3;
 
-struct Reader
+struct MeasurementReader
 {
   std::string source;
 
@@ -76,7 +76,7 @@ bool must_be_positive(Quantity q)
   return q == Quantity::projection || q == Quantity::height || q == Quantity::base_perimeter;
 }
 
-void add_scalar(const Reader& rd, Measurements& m, std::size_t posture, Quantity q,
+void add_scalar(const MeasurementReader& rd, Measurements& m, std::size_t posture, Quantity q,
                 const nlohmann::json& v, const std::string& key, double sigma_default)
 {
   auto [x, s] = rd.value_and_sigma(v, key, sigma_default);
@@ -96,7 +96,7 @@ std::size_t posture_index(Measurements& m, const Posture& p)
 }
 
 /// The nipple [x, y, z] of posture `posture` as three measurements.
-void add_nipple(const Reader& rd, Measurements& m, std::size_t posture, const nlohmann::json& v,
+void add_nipple(const MeasurementReader& rd, Measurements& m, std::size_t posture, const nlohmann::json& v,
                 const std::string& key, const std::string& prefix, double sigma_default)
 {
   auto [x, s] = rd.value_and_sigma(v, key, sigma_default);
@@ -111,7 +111,7 @@ void add_nipple(const Reader& rd, Measurements& m, std::size_t posture, const nl
 }
 
 /// The posture of entry `at` (its name or theta_deg).
-Posture posture_of(const Reader& rd, const nlohmann::json& p, const std::string& at)
+Posture posture_of(const MeasurementReader& rd, const nlohmann::json& p, const std::string& at)
 {
   if (!p.is_object())
     rd.fail(at, "must be an object with 'name' or 'theta_deg' and measured values");
@@ -130,7 +130,7 @@ Posture posture_of(const Reader& rd, const nlohmann::json& p, const std::string&
 }
 
 /// One entry of "postures" with its measured values.
-void add_posture(const Reader& rd, Measurements& m, const nlohmann::json& p, const std::string& at,
+void add_posture(const MeasurementReader& rd, Measurements& m, const nlohmann::json& p, const std::string& at,
                  double sigma0, std::set<double>& seen)
 {
   const Posture posture = posture_of(rd, p, at);
@@ -157,7 +157,7 @@ void add_posture(const Reader& rd, Measurements& m, const nlohmann::json& p, con
 }
 
 /// The top-level keys, units and the postures list; the default sigma.
-double check_document(const Reader& rd, const nlohmann::json& doc)
+double check_document(const MeasurementReader& rd, const nlohmann::json& doc)
 {
   if (!doc.is_object())
     throw InputError(fmt::format("measurements '{}': expected a JSON object", rd.source));
@@ -200,7 +200,7 @@ std::string quantity_name(Quantity q)
 
 Measurements parse_measurements(const nlohmann::json& doc, const std::string& source)
 {
-  const Reader rd{source};
+  const MeasurementReader rd{source};
   const double sigma0 = check_document(rd, doc);
   const auto& ps = doc.at("postures");
   Measurements m;

@@ -10,9 +10,9 @@ namespace breastsim::calibration
 {
 namespace
 {
-constexpr double max_length = 1.0; ///< |coordinate| above this is not metres
+constexpr double max_coordinate = 1.0; ///< |coordinate| above this is not metres
 
-struct Reader
+struct RecordingReader
 {
   std::string source;
 
@@ -40,7 +40,7 @@ struct Reader
       fail(key, fmt::format("= {} must be [x, y, z] in metres", v.dump().substr(0, 80)));
     Point p;
     for (int c = 0; c < 3; ++c)
-      p[c] = number(v[c], fmt::format("{}[{}]", key, c), -max_length, max_length,
+      p[c] = number(v[c], fmt::format("{}[{}]", key, c), -max_coordinate, max_coordinate,
                     "m (SI units: metres, not mm)");
     return p;
   }
@@ -70,7 +70,7 @@ struct Reader
 
 Recording parse_recording(const nlohmann::json& j, const std::string& source)
 {
-  const Reader rd{source};
+  const RecordingReader rd{source};
   if (!j.is_object())
     rd.fail("(top level)", "must be a JSON object");
   rd.only(j, {"format", "noise_sigma", "known", "postures", "truth", "units", "comment", "written_by"}, "");

@@ -58,8 +58,6 @@ SkinSurface triangulate(const scan::RadialSurface& f, int rings = 32)
   return s;
 }
 
-double distance(const Point& a, const Point& b) { return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]); }
-
 /// Refuse a value measured on the scan outside the landmark's accepted range.
 void check_measured(const std::string& key, double value, const std::filesystem::path& file)
 {
@@ -194,9 +192,7 @@ ScanComparison compare_with_scan(const ScannedSkin& s, const Point& scan_fold, c
     for (const auto& t : tri)
     {
       const auto l = closest_barycentric(p, t[0], t[1], t[2]);
-      const Point q{l[0] * t[0][0] + l[1] * t[1][0] + l[2] * t[2][0], l[0] * t[0][1] + l[1] * t[1][1] + l[2] * t[2][1],
-                    l[0] * t[0][2] + l[1] * t[1][2] + l[2] * t[2][2]};
-      dist[i] = std::min(dist[i], distance(p, q));
+      dist[i] = std::min(dist[i], distance(p, barycentric_point(l, t[0], t[1], t[2])));
     }
   }
   double sum = 0, wsum = 0;

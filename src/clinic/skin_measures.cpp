@@ -10,11 +10,6 @@ namespace breastsim::clinic
 {
 namespace
 {
-double distance(const Point& a, const Point& b)
-{
-  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-}
-
 /// Boundary edges of the skin (edges of exactly one triangle), as a
 /// neighbour list per vertex.
 std::map<std::int32_t, std::vector<std::int32_t>> boundary_neighbours(const SkinSurface& s)
@@ -218,6 +213,16 @@ std::array<double, 3> closest_barycentric(const Point& p, const Point& a, const 
   return {1 - v - w, v, w};
 }
 
+double distance(const Point& a, const Point& b) { return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]); }
+
+Point barycentric_point(const std::array<double, 3>& l, const Point& a, const Point& b, const Point& c)
+{
+  Point q{};
+  for (int i = 0; i < 3; ++i)
+    q[i] = l[0] * a[i] + l[1] * b[i] + l[2] * c[i];
+  return q;
+}
+
 Point deformed_position(const SkinSurface& s, const Point& reference)
 {
   double best = std::numeric_limits<double>::infinity();
@@ -225,15 +230,9 @@ Point deformed_position(const SkinSurface& s, const Point& reference)
   for (const auto& t : s.triangles)
   {
     const auto l = closest_barycentric(reference, s.reference[t[0]], s.reference[t[1]], s.reference[t[2]]);
-    Point q{}, d{};
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k)
-      {
-        q[i] += l[k] * s.reference[t[k]][i];
-        d[i] += l[k] * s.deformed[t[k]][i];
-      }
+    const Point q = barycentric_point(l, s.reference[t[0]], s.reference[t[1]], s.reference[t[2]]);
     if (const double dist = distance(q, reference); dist < best)
-      best = dist, out = d;
+      best = dist, out = barycentric_point(l, s.deformed[t[0]], s.deformed[t[1]], s.deformed[t[2]]);
   }
   return out;
 }

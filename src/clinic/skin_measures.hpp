@@ -57,6 +57,12 @@ double taut_tape(const SkinSurface& s, const Point& notch, const Point& nipple, 
 /// vertices whose reference lies on the chest [m].
 double base_width(const SkinSurface& s, double chest_tolerance = 2e-4);
 
+/// |a - b| [m].
+double distance(const Point& a, const Point& b);
+
+/// l0 a + l1 b + l2 c: the point of barycentric coordinates l in (a, b, c).
+Point barycentric_point(const std::array<double, 3>& l, const Point& a, const Point& b, const Point& c);
+
 /// Barycentric coordinates of the point of triangle (a, b, c) closest to p
 /// (Ericson, Real-Time Collision Detection, 5.1.5).
 std::array<double, 3> closest_barycentric(const Point& p, const Point& a, const Point& b, const Point& c);
