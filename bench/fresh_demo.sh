@@ -47,7 +47,8 @@ rc=${PIPESTATUS[0]}
 set -e
 python3 - "$WORK/demo.log" "$rc" "$(git -C "$REPO" rev-parse --short HEAD)" "$(nproc)" <<'PY' | tee "$WORK/timing.json"
 import json, re, sys
-lines = [l.split(" ", 1) for l in open(sys.argv[1]).read().splitlines() if " " in l]
+stamp = re.compile(r"^(\d+\.\d+) (.*)$")  # lines apt split with a carriage return have no stamp
+lines = [m.groups() for m in map(stamp.match, open(sys.argv[1], errors="replace").read().split("\n")) if m]
 t = [float(a) for a, _ in lines]
 text = [b for _, b in lines]
 first_build = next(i for i, s in enumerate(text) if re.match(r"\[ *\d+%\]", s))

@@ -16,7 +16,7 @@ namespace breastsim::calibration
 {
 ForwardModel::ForwardModel(std::vector<Posture> postures, MPI_Comm comm, bool morph)
     : _postures(std::move(postures)), _comm(comm), _morph(morph), _last(_postures.size()),
-      _solved_at(_postures.size())
+      _solved_at(_postures.size()), _tangent(_postures.size())
 {
 }
 
@@ -55,6 +55,8 @@ void ForwardModel::rebuild(const Config& c)
     u.clear(); // solutions on another mesh cannot start this one
   for (auto& at : _solved_at)
     at = nullptr;
+  for (auto& t : _tangent)
+    t = {};
   ++_meshes;
 }
 
@@ -82,9 +84,11 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
   guess.name = "the last solution";
   guess.quiet = true;
   if (!_last[i].empty())
-    guess.set = [&](Model& model, std::string&)
+    guess.set = [&, step = predictor_step(i, c)](Model& model, std::string&)
     {
       std::copy(_last[i].begin(), _last[i].end(), x.begin());
+      for (std::size_t k = 0; k < step.size(); ++k)
+        x[k] += step[k];
       model.displacement()->x()->scatter_fwd();
       return true;
     };
@@ -94,6 +98,27 @@ Observables ForwardModel::solve_one(std::size_t i, const Config& c)
   _last[i].assign(x.begin(), x.end());
   _solved_at[i] = c.to_json();
   return r.observables;
+}
+
+std::vector<T> ForwardModel::predictor_step(std::size_t i, const Config& c) const
+{
+  const Tangent& t = _tangent[i];
+  if (t.keys.empty() || _solved_at[i] != t.at.to_json())
+    return {};
+  Config at = t.at;
+  std::vector<double> dp;
+  for (const auto& key : t.keys)
+  {
+    dp.push_back(c.number(key) - at.number(key));
+    at.set(key, c.number(key));
+  }
+  if (at.to_json() != c.to_json())
+    return {};
+  std::vector<T> step(t.du[0].size(), 0.0);
+  for (std::size_t j = 0; j < t.keys.size(); ++j)
+    for (std::size_t k = 0; k < step.size(); ++k)
+      step[k] += t.du[j][k] * dp[j];
+  return step;
 }
 
 void ForwardModel::prepare(const Config& c)
@@ -244,9 +269,14 @@ std::vector<Observables> ForwardModel::sensitivities(std::size_t i, const Config
     directions.push_back(std::move(*d));
   }
   std::vector<Observables> out(keys.size());
+  Tangent tangent{c, keys, std::vector<std::vector<T>>(keys.size())};
   sensitivities(i, c, directions,
-                [&](std::size_t j, const Model&, std::span<const double>, const Observables& d)
-                { out[j] = d; });
+                [&](std::size_t j, const Model&, std::span<const double> du, const Observables& d)
+                {
+                  out[j] = d;
+                  tangent.du[j].assign(du.begin(), du.end());
+                });
+  _tangent[i] = std::move(tangent);
   return out;
 }
 

@@ -111,6 +111,21 @@ private:
   std::unique_ptr<ObservableProbe> _probe;
   std::vector<std::vector<T>> _last; ///< last solution of each posture (empty: none yet)
   std::vector<nlohmann::json> _solved_at; ///< the case of each posture's last solution
+  /// du/dp of each posture's last solution along the parameters of its last
+  /// sensitivities (ForwardModel::sensitivities by key): the next solve at
+  /// nearby values of those parameters starts from the first-order
+  /// predictor u + sum_j du/dp_j (p'_j - p_j).
+  struct Tangent
+  {
+    Config at; ///< the case of the solution it was taken at
+    std::vector<std::string> keys;
+    std::vector<std::vector<T>> du;
+  };
+  std::vector<Tangent> _tangent;
+  /// The predictor's step sum_j du/dp_j (p'_j - p_j) for posture i at case
+  /// c, or empty when c differs from the last solution's case in anything
+  /// but the tangent's parameters.
+  std::vector<T> predictor_step(std::size_t i, const Config& c) const;
   int _posture_solves = 0, _warm_starts = 0, _meshes = 0, _morphs = 0;
 };
 } // namespace breastsim::calibration
