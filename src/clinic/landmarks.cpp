@@ -21,6 +21,14 @@ const std::vector<LandmarkRange>& landmark_ranges()
   return r;
 }
 
+const LandmarkRange* violated_range(const std::string& key, double value)
+{
+  for (const auto& r : landmark_ranges())
+    if (r.key == key && !(value >= r.lo && value <= r.hi))
+      return &r;
+  return nullptr;
+}
+
 namespace
 {
 const std::vector<std::string> side_keys = {"sn_n", "n_imf", "base_width", "nipple_midline", "projection",
@@ -57,10 +65,9 @@ struct Reader
     if (!v.is_number() || !std::isfinite(v.get<double>()))
       fail(key, fmt::format("= {} is not a finite number", shorten(v.dump())));
     const double x = v.get<double>() * unit;
-    for (const auto& r : landmark_ranges())
-      if (r.key == name && !(x >= r.lo && x <= r.hi))
-        fail(key, fmt::format("= {} {} is out of range: [{}, {}] {} ({})", v.get<double>(), unit_name,
-                              r.lo / unit, r.hi / unit, unit_name, r.why));
+    if (const LandmarkRange* r = violated_range(name, x))
+      fail(key, fmt::format("= {} {} is out of range: [{}, {}] {} ({})", v.get<double>(), unit_name,
+                            r->lo / unit, r->hi / unit, unit_name, r->why));
     return x;
   }
 

@@ -62,6 +62,8 @@ struct LandmarkRange
   std::string why;
 };
 const std::vector<LandmarkRange>& landmark_ranges();
+/// The range of landmark `key` that `value` [m] lies outside, or nullptr.
+const LandmarkRange* violated_range(const std::string& key, double value);
 
 /// The patient document `breastsim-patient/1` (docs/CLINIC.md). Throws
 /// InputError naming the key, the value (in the file's unit) and the

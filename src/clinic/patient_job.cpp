@@ -105,7 +105,7 @@ std::string patient_table(const PatientModel& m)
                        "within {:.1f} mm, at most {:.1f} mm) from the scan's, volume {:.0f} cm^3 against the scan's "
                        "{:.0f} cm^3 ({:+.0f} %)\n",
                        s.side, s.scan->input.file.filename().string(), 1e3 * c.mean, 1e3 * c.p95, 1e3 * c.max,
-                       1e6 * c.volume_model, 1e6 * c.volume_scan, 100 * (c.volume_model / c.volume_scan - 1));
+                       1e6 * c.volume_model, 1e6 * c.volume_scan, 100 * c.volume_error());
     }
   }
   if (m.body)

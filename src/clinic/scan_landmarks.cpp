@@ -61,11 +61,10 @@ SkinSurface triangulate(const scan::RadialSurface& f, int rings = 32)
 /// Refuse a value measured on the scan outside the landmark's accepted range.
 void check_measured(const std::string& key, double value, const std::filesystem::path& file)
 {
-  for (const auto& r : landmark_ranges())
-    if (r.key == key && !(value >= r.lo && value <= r.hi))
-      throw InputError(fmt::format("scan '{}': {} measured on it = {:.1f} cm is out of range: [{:.0f}, {:.0f}] cm "
-                                   "({}); check the scan's frame (up, lateral, nipple)",
-                                   file.string(), key, 100 * value, 100 * r.lo, 100 * r.hi, r.why));
+  if (const LandmarkRange* r = violated_range(key, value))
+    throw InputError(fmt::format("scan '{}': {} measured on it = {:.1f} cm is out of range: [{:.0f}, {:.0f}] cm "
+                                 "({}); check the scan's frame (up, lateral, nipple)",
+                                 file.string(), key, 100 * value, 100 * r->lo, 100 * r->hi, r->why));
 }
 } // namespace
 
@@ -226,7 +225,7 @@ nlohmann::json to_json(const ScanSide& s)
           {"notch_given", s.measured.notch.has_value()},
           {"model_to_scan_mm", {{"mean", 1e3 * c.mean}, {"p95", 1e3 * c.p95}, {"max", 1e3 * c.max}}},
           {"volume_cm3", {{"scan", 1e6 * c.volume_scan}, {"model", 1e6 * c.volume_model}}},
-          {"volume_error", (c.volume_model - c.volume_scan) / c.volume_scan}};
+          {"volume_error", c.volume_error()}};
 }
 
 nlohmann::json scan_surface_json(const ScannedSkin& s, const Point& shift)

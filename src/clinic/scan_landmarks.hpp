@@ -62,6 +62,8 @@ struct ScanComparison
   double mean = 0, p95 = 0, max = 0;   ///< [m]
   double volume_scan = 0, volume_model = 0; ///< full breast [m^3]
   Point shift{};                       ///< model frame + shift = scan frame [m]
+  /// (V_model - V_scan) / V_scan.
+  double volume_error() const { return (volume_model - volume_scan) / volume_scan; }
 };
 /// `model`: the model's deformed standing skin (a half model is mirrored).
 ScanComparison compare_with_scan(const ScannedSkin& s, const Point& scan_fold, const SkinSurface& model,
