@@ -237,6 +237,8 @@ void JobQueue::finish(const std::string& id, int exit_code, bool cancelled)
     result.state = JobState::cancelled;
     result.error_kind = "cancelled";
     result.error = "cancelled while running (" + result.stage + ")";
+    std::error_code ec; // the job process's progress is no result: a cancelled job keeps its records only
+    fs::remove(folder / progress_file, ec);
   }
   else if (const auto outcome = outcome_of(folder, exit_code); exit_code == 0 && outcome.value("ok", false))
   {
